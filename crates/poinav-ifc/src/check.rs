@@ -1,0 +1,353 @@
+//! Second pass over a scanned model: dangling references, attribute counts, parenthesis
+//! balance (in parallel), bytes that are not UTF-8, and cycles in placements and aggregation.
+
+use rayon::prelude::*;
+use rustc_hash::{FxHashMap, FxHashSet};
+
+use crate::diagnostic::DiagnosticKind;
+use crate::model::Model;
+use crate::EntityId;
+
+/// A diagnostic before its offset is turned into a line.
+pub(crate) type Problem = (DiagnosticKind, Option<EntityId>, usize, String);
+
+struct Shape {
+    attrs: usize,
+    balanced: bool,
+    dangling: Vec<u64>,
+}
+
+/// Walks one argument list byte by byte; `exists` tells whether a referenced id is defined.
+fn shape(args: &[u8], exists: impl Fn(u64) -> bool) -> Shape {
+    let mut depth = 0usize;
+    let mut commas = 0;
+    let mut saw_value = false;
+    let mut dangling = Vec::new();
+    let mut i = 0;
+    let mut closed_at = None;
+    while i < args.len() {
+        let c = args[i];
+        match c {
+            b'\'' => {
+                saw_value = true;
+                let mut j = i + 1;
+                loop {
+                    match memchr::memchr(b'\'', &args[j.min(args.len())..]) {
+                        Some(q) if args.get(j + q + 1) == Some(&b'\'') => j += q + 2,
+                        Some(q) => {
+                            i = j + q + 1;
+                            break;
+                        }
+                        None => {
+                            i = args.len();
+                            break;
+                        }
+                    }
+                }
+                continue;
+            }
+            b'"' => {
+                saw_value = true;
+                i = memchr::memchr(b'"', &args[i + 1..]).map_or(args.len(), |q| i + q + 2);
+                continue;
+            }
+            b'(' => {
+                if depth >= 1 {
+                    saw_value = true;
+                }
+                depth += 1;
+            }
+            b')' => {
+                if depth == 0 {
+                    closed_at = None;
+                    break;
+                }
+                depth -= 1;
+                if depth == 0 {
+                    closed_at = Some(i);
+                    break;
+                }
+            }
+            b',' if depth == 1 => commas += 1,
+            b'#' => {
+                saw_value = true;
+                let s = i + 1;
+                let mut j = s;
+                while j < args.len() && args[j].is_ascii_digit() {
+                    j += 1;
+                }
+                let id = std::str::from_utf8(&args[s..j])
+                    .ok()
+                    .and_then(|t| t.parse::<u64>().ok());
+                match id {
+                    Some(id) if exists(id) => {}
+                    Some(id) => dangling.push(id),
+                    None => {}
+                }
+                i = j;
+                continue;
+            }
+            b'/' if args.get(i + 1) == Some(&b'*') => {
+                i = memchr::memmem::find(&args[i + 2..], b"*/").map_or(args.len(), |e| i + e + 4);
+                continue;
+            }
+            b' ' | b'\t' | b'\r' | b'\n' => {}
+            _ => {
+                if depth >= 1 {
+                    saw_value = true;
+                }
+            }
+        }
+        i += 1;
+    }
+    let balanced = closed_at.is_some_and(|c| args[c + 1..].iter().all(u8::is_ascii_whitespace));
+    Shape {
+        attrs: if saw_value { commas + 1 } else { 0 },
+        balanced,
+        dangling,
+    }
+}
+
+/// Dangling references, wrong attribute counts and unbalanced argument lists, checked in parallel.
+pub(crate) fn structure(model: &Model, _duplicates: &[u32]) -> Vec<Problem> {
+    let schema = model.schema();
+    let bytes = model.bytes();
+    model
+        .instances
+        .par_chunks(4096)
+        .flat_map_iter(|chunk| {
+            let mut out = Vec::new();
+            for inst in chunk {
+                let args = &bytes[inst.args..inst.end - 1];
+                let s = shape(args, |id| model.entity(EntityId(id)).is_some());
+                if !s.balanced {
+                    out.push((
+                        DiagnosticKind::Syntax,
+                        Some(inst.id),
+                        inst.start,
+                        "unbalanced parentheses in the argument list".to_string(),
+                    ));
+                    continue;
+                }
+                if let Some(t) = inst.type_id() {
+                    let want = schema.attribute_count(t);
+                    if s.attrs != want {
+                        out.push((
+                            DiagnosticKind::WrongAttributeCount,
+                            Some(inst.id),
+                            inst.start,
+                            format!(
+                                "{} has {} attributes, {} declares {}",
+                                schema.entity(t).upper,
+                                s.attrs,
+                                schema.name(),
+                                want
+                            ),
+                        ));
+                    }
+                }
+                if !s.dangling.is_empty() {
+                    let shown: Vec<String> = s
+                        .dangling
+                        .iter()
+                        .take(5)
+                        .map(|id| format!("#{id}"))
+                        .collect();
+                    out.push((
+                        DiagnosticKind::DanglingReference,
+                        Some(inst.id),
+                        inst.start,
+                        format!(
+                            "refers to {} which {} not exist{}",
+                            shown.join(", "),
+                            if s.dangling.len() == 1 { "does" } else { "do" },
+                            if s.dangling.len() > 5 {
+                                format!(" (and {} more)", s.dangling.len() - 5)
+                            } else {
+                                String::new()
+                            }
+                        ),
+                    ));
+                }
+            }
+            out
+        })
+        .collect()
+}
+
+/// One diagnostic per instance whose bytes are not valid UTF-8.
+pub(crate) fn non_utf8(model: &Model) -> Vec<Problem> {
+    let bytes = model.bytes();
+    let mut out = Vec::new();
+    let mut seen = FxHashSet::default();
+    let mut pos = 0;
+    while pos < bytes.len() {
+        match std::str::from_utf8(&bytes[pos..]) {
+            Ok(_) => break,
+            Err(e) => {
+                let bad = pos + e.valid_up_to();
+                let at = model.instances.partition_point(|i| i.start <= bad);
+                let inst = at
+                    .checked_sub(1)
+                    .map(|k| &model.instances[k])
+                    .filter(|i| bad < i.end);
+                if seen.insert(inst.map(|i| i.id)) {
+                    out.push((
+                        DiagnosticKind::NonUtf8,
+                        inst.map(|i| i.id),
+                        bad,
+                        "bytes that are not UTF-8 (kept unchanged, read as ISO 8859-1)".to_string(),
+                    ));
+                }
+                pos = bad + e.error_len().unwrap_or(1);
+            }
+        }
+    }
+    out
+}
+
+/// Child -> parent edges: finds every cycle once, as positions in walk order.
+fn find_cycles(parent: &FxHashMap<u32, u32>) -> Vec<Vec<u32>> {
+    // 0 = unvisited, 1 = on the current walk, 2 = done.
+    let mut state: FxHashMap<u32, u8> = FxHashMap::default();
+    let mut keys: Vec<u32> = parent.keys().copied().collect();
+    keys.sort_unstable();
+    let mut cycles = Vec::new();
+    for start in keys {
+        if state.get(&start).copied().unwrap_or(0) != 0 {
+            continue;
+        }
+        let mut walk = Vec::new();
+        let mut cur = start;
+        loop {
+            match state.get(&cur).copied().unwrap_or(0) {
+                0 => {
+                    state.insert(cur, 1);
+                    walk.push(cur);
+                    match parent.get(&cur) {
+                        Some(&p) => cur = p,
+                        None => break,
+                    }
+                }
+                1 => {
+                    let from = walk.iter().position(|&w| w == cur).expect("on walk");
+                    cycles.push(walk[from..].to_vec());
+                    break;
+                }
+                _ => break,
+            }
+        }
+        for w in walk {
+            state.insert(w, 2);
+        }
+    }
+    cycles
+}
+
+fn cycle_problems(
+    model: &Model,
+    parent: &FxHashMap<u32, u32>,
+    kind: DiagnosticKind,
+    what: &str,
+) -> Vec<Problem> {
+    find_cycles(parent)
+        .into_iter()
+        .map(|cycle| {
+            let first = *cycle.iter().min().expect("non-empty cycle");
+            let ids: Vec<String> = cycle
+                .iter()
+                .map(|&p| model.instances[p as usize].id.to_string())
+                .collect();
+            let inst = &model.instances[first as usize];
+            (
+                kind,
+                Some(inst.id),
+                inst.start,
+                format!("{what} form a cycle: {}", ids.join(" -> ")),
+            )
+        })
+        .collect()
+}
+
+/// Cycles through `IfcLocalPlacement.PlacementRelTo` and through aggregation.
+pub(crate) fn cycles(model: &Model) -> Vec<Problem> {
+    let mut out = Vec::new();
+    let schema = model.schema();
+    let pos_of = |id: EntityId| model.entity(id).map(|e| e.position() as u32);
+
+    if let Some(t) = schema.type_by_name("IfcObjectPlacement") {
+        let mut parent = FxHashMap::default();
+        for p in model.positions_of(t) {
+            let e = crate::Entity::new(model, p);
+            if let Some(rel) = e
+                .attr_index("PlacementRelTo")
+                .ok()
+                .and_then(|i| e.attr_at(i).ok().flatten())
+            {
+                if let Some(target) = rel.as_ref_id().and_then(pos_of) {
+                    parent.insert(p, target);
+                }
+            }
+        }
+        out.extend(cycle_problems(
+            model,
+            &parent,
+            DiagnosticKind::CyclicPlacement,
+            "placements",
+        ));
+    }
+    if let Some(t) = schema.type_by_name("IfcRelAggregates") {
+        let mut parent = FxHashMap::default();
+        for p in model.positions_of(t) {
+            let rel = crate::Entity::new(model, p);
+            let Some(whole) = rel
+                .get("RelatingObject")
+                .and_then(|v| v.as_ref_id())
+                .and_then(pos_of)
+            else {
+                continue;
+            };
+            for part in rel
+                .get("RelatedObjects")
+                .map(|v| v.refs())
+                .unwrap_or_default()
+            {
+                if let Some(part) = pos_of(part) {
+                    parent.entry(part).or_insert(whole);
+                }
+            }
+        }
+        out.extend(cycle_problems(
+            model,
+            &parent,
+            DiagnosticKind::CyclicAggregation,
+            "aggregations (IfcRelAggregates)",
+        ));
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn shape_counts_top_level_attributes_and_dangling_refs() {
+        let s = shape(b"('a,b',(#1,#2),$,#9)", |id| id < 5);
+        assert_eq!((s.attrs, s.balanced, s.dangling), (4, true, vec![9]));
+        let s = shape(b"()", |_| true);
+        assert_eq!((s.attrs, s.balanced), (0, true));
+        assert!(!shape(b"((1,2)", |_| true).balanced);
+        assert!(!shape(b"(1))", |_| true).balanced);
+    }
+
+    #[test]
+    fn cycles_are_found_once() {
+        let parent: FxHashMap<u32, u32> = [(1, 2), (2, 3), (3, 1), (4, 1), (5, 6)]
+            .into_iter()
+            .collect();
+        let c = find_cycles(&parent);
+        assert_eq!(c.len(), 1);
+        assert_eq!(c[0].len(), 3);
+    }
+}

@@ -1,0 +1,332 @@
+//! First pass over the DATA section: finds every instance's `#id`, entity type and byte span.
+//!
+//! The scan jumps between `'`, `;` and `/` with memchr, so it touches little more than the
+//! bytes of string literals; attribute contents are checked later, in parallel (`check.rs`).
+
+use rustc_hash::FxHashMap;
+
+use crate::diagnostic::DiagnosticKind;
+use crate::error::ReadErrorKind;
+use crate::schema::TypeId;
+use crate::{EntityId, Schema};
+
+/// Marks an instance whose entity name the schema does not declare.
+pub(crate) const UNKNOWN_TYPE: u16 = u16::MAX;
+
+/// One instance line: `#id = TYPE ( args ) ;`.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Instance {
+    pub(crate) id: EntityId,
+    /// Offset of the `#`.
+    pub(crate) start: usize,
+    /// Offset of the `(` that opens the arguments.
+    pub(crate) args: usize,
+    /// Offset just after the closing `;`.
+    pub(crate) end: usize,
+    pub(crate) ty: u16,
+}
+
+impl Instance {
+    pub(crate) fn type_id(&self) -> Option<TypeId> {
+        (self.ty != UNKNOWN_TYPE).then_some(TypeId(self.ty))
+    }
+}
+
+/// What the scan found.
+#[derive(Debug, Default)]
+pub(crate) struct Scan {
+    pub(crate) instances: Vec<Instance>,
+    /// Syntax and unknown-entity problems, with byte offsets (lines are added by the model).
+    pub(crate) problems: Vec<(DiagnosticKind, Option<EntityId>, usize, String)>,
+    /// Offset of the `ENDSEC` that closes the last DATA section.
+    pub(crate) data_end: usize,
+}
+
+/// A fatal scan failure: what and at which byte offset, and the instance being read.
+pub(crate) type ScanError = (ReadErrorKind, usize, Option<EntityId>);
+
+/// Skips white space and `/* */` comments from `pos`.
+pub(crate) fn skip_ws_and_comments(
+    bytes: &[u8],
+    mut pos: usize,
+) -> Result<usize, (ReadErrorKind, usize)> {
+    loop {
+        while pos < bytes.len() && matches!(bytes[pos], b' ' | b'\t' | b'\r' | b'\n' | b'\x0c') {
+            pos += 1;
+        }
+        if bytes[pos.min(bytes.len())..].starts_with(b"/*") {
+            match memchr::memmem::find(&bytes[pos + 2..], b"*/") {
+                Some(e) => pos += e + 4,
+                None => return Err((ReadErrorKind::UnterminatedComment, pos)),
+            }
+        } else {
+            return Ok(pos);
+        }
+    }
+}
+
+/// Offset of the `;` that ends the record starting at or before `pos`, skipping strings and comments.
+pub(crate) fn find_record_end(
+    bytes: &[u8],
+    mut pos: usize,
+) -> Result<usize, (ReadErrorKind, usize)> {
+    loop {
+        let Some(k) = memchr::memchr3(b'\'', b';', b'/', &bytes[pos.min(bytes.len())..]) else {
+            return Err((
+                ReadErrorKind::Truncated("the file ends inside an entry (no closing `;`)".into()),
+                bytes.len(),
+            ));
+        };
+        let k = pos + k;
+        match bytes[k] {
+            b';' => return Ok(k),
+            b'\'' => {
+                let mut i = k + 1;
+                loop {
+                    match memchr::memchr(b'\'', &bytes[i.min(bytes.len())..]) {
+                        Some(q) if bytes.get(i + q + 1) == Some(&b'\'') => i += q + 2,
+                        Some(q) => {
+                            pos = i + q + 1;
+                            break;
+                        }
+                        None => return Err((ReadErrorKind::UnterminatedString, k)),
+                    }
+                }
+            }
+            _ => {
+                if bytes.get(k + 1) == Some(&b'*') {
+                    match memchr::memmem::find(&bytes[k + 2..], b"*/") {
+                        Some(e) => pos = k + e + 4,
+                        None => return Err((ReadErrorKind::UnterminatedComment, k)),
+                    }
+                } else {
+                    pos = k + 1;
+                }
+            }
+        }
+    }
+}
+
+fn is_name_byte(b: u8) -> bool {
+    b.is_ascii_alphanumeric() || b == b'_'
+}
+
+/// Scans every DATA section after the header ends at `pos`.
+pub(crate) fn scan(bytes: &[u8], mut pos: usize, schema: Schema) -> Result<Scan, ScanError> {
+    let mut out = Scan {
+        instances: Vec::with_capacity(bytes.len() / 80),
+        ..Scan::default()
+    };
+    let mut type_cache: FxHashMap<&[u8], u16> = FxHashMap::default();
+    let mut sections = 0;
+    let lift = |(k, o): (ReadErrorKind, usize)| (k, o, None);
+    loop {
+        pos = skip_ws_and_comments(bytes, pos).map_err(lift)?;
+        let rest = &bytes[pos..];
+        if rest.starts_with(b"DATA") {
+            pos = find_record_end(bytes, pos + 4).map_err(lift)? + 1;
+            scan_section(bytes, &mut pos, schema, &mut out, &mut type_cache)?;
+            sections += 1;
+        } else if rest.starts_with(b"END-ISO-10303-21") || (rest.is_empty() && sections > 0) {
+            break;
+        } else if rest.is_empty() {
+            return Err((
+                ReadErrorKind::Truncated("the file ends before its DATA section".into()),
+                pos,
+                None,
+            ));
+        } else if sections == 0 {
+            return Err((
+                ReadErrorKind::Syntax("expected `DATA;` after the HEADER section".into()),
+                pos,
+                None,
+            ));
+        } else {
+            // Trailing junk after the data: report it and stop reading.
+            out.problems.push((
+                DiagnosticKind::Syntax,
+                None,
+                pos,
+                "unexpected text after the DATA section".into(),
+            ));
+            break;
+        }
+    }
+    Ok(out)
+}
+
+fn scan_section<'b>(
+    bytes: &'b [u8],
+    pos: &mut usize,
+    schema: Schema,
+    out: &mut Scan,
+    type_cache: &mut FxHashMap<&'b [u8], u16>,
+) -> Result<(), ScanError> {
+    let mut upper = Vec::new();
+    loop {
+        let last_id = out.instances.last().map(|i| i.id);
+        let p = skip_ws_and_comments(bytes, *pos).map_err(|(k, o)| (k, o, last_id))?;
+        if p >= bytes.len() {
+            return Err((
+                ReadErrorKind::Truncated("the DATA section is not closed by `ENDSEC;`".into()),
+                p,
+                last_id,
+            ));
+        }
+        if bytes[p] != b'#' {
+            let end = find_record_end(bytes, p).map_err(|(k, o)| (k, o, last_id))?;
+            if bytes[p..].starts_with(b"ENDSEC") {
+                out.data_end = p;
+                *pos = end + 1;
+                return Ok(());
+            }
+            out.problems.push((
+                DiagnosticKind::Syntax,
+                None,
+                p,
+                "expected `#id=` at the start of an instance; skipped to the next `;`".into(),
+            ));
+            *pos = end + 1;
+            continue;
+        }
+        let start = p;
+        let mut i = p + 1;
+        let digits_start = i;
+        while i < bytes.len() && bytes[i].is_ascii_digit() {
+            i += 1;
+        }
+        let id = std::str::from_utf8(&bytes[digits_start..i])
+            .ok()
+            .and_then(|s| s.parse::<u64>().ok());
+        let id_for_errors = id.map(EntityId).or(last_id);
+        let end = find_record_end(bytes, i).map_err(|(k, o)| (k, o, id_for_errors))?;
+        *pos = end + 1;
+        let Some(id) = id else {
+            out.problems.push((
+                DiagnosticKind::Syntax,
+                None,
+                start,
+                "instance id is missing or out of range; instance skipped".into(),
+            ));
+            continue;
+        };
+        let id = EntityId(id);
+        i = skip_ws(bytes, i);
+        if bytes.get(i) != Some(&b'=') {
+            out.problems.push((
+                DiagnosticKind::Syntax,
+                Some(id),
+                start,
+                "expected `=` after the instance id; instance skipped".into(),
+            ));
+            continue;
+        }
+        i = skip_ws(bytes, i + 1);
+        let name_start = i;
+        while i < end && is_name_byte(bytes[i]) {
+            i += 1;
+        }
+        let name = &bytes[name_start..i];
+        i = skip_ws(bytes, i);
+        if bytes.get(i) != Some(&b'(') {
+            out.problems.push((
+                DiagnosticKind::Syntax,
+                Some(id),
+                start,
+                "expected `TYPE(` after `=`; instance skipped".into(),
+            ));
+            continue;
+        }
+        let ty = if name.is_empty() {
+            // A complex (multi-leaf) instance `#1=(A()B());`: kept as bytes, not typed.
+            out.problems.push((
+                DiagnosticKind::UnknownEntity,
+                Some(id),
+                start,
+                "complex entity instance is kept but not interpreted".into(),
+            ));
+            UNKNOWN_TYPE
+        } else if let Some(&t) = type_cache.get(name) {
+            t
+        } else {
+            upper.clear();
+            upper.extend(name.iter().map(u8::to_ascii_uppercase));
+            let t = schema.type_by_upper(&upper).map_or(UNKNOWN_TYPE, |t| t.0);
+            type_cache.insert(name, t);
+            t
+        };
+        if ty == UNKNOWN_TYPE && !name.is_empty() {
+            out.problems.push((
+                DiagnosticKind::UnknownEntity,
+                Some(id),
+                start,
+                format!(
+                    "entity `{}` is not part of {}; instance kept but not interpreted",
+                    String::from_utf8_lossy(name),
+                    schema.name()
+                ),
+            ));
+        }
+        out.instances.push(Instance {
+            id,
+            start,
+            args: i,
+            end: end + 1,
+            ty,
+        });
+    }
+}
+
+fn skip_ws(bytes: &[u8], mut i: usize) -> usize {
+    while i < bytes.len() && matches!(bytes[i], b' ' | b'\t' | b'\r' | b'\n') {
+        i += 1;
+    }
+    i
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn finds_instances_across_strings_comments_and_lines() {
+        let data = b"DATA;\n#1=IFCWALL('a;b''c',$);\r\n/* note; 'x */ #2 = IFCDOOR\n('x',\n#1);#3=IFCFOOBAR();\nENDSEC;\nEND-ISO-10303-21;";
+        let s = scan(data, 0, Schema::Ifc4).unwrap();
+        let ids: Vec<u64> = s.instances.iter().map(|i| i.id.0).collect();
+        assert_eq!(ids, [1, 2, 3]);
+        assert_eq!(
+            &data[s.instances[1].args..s.instances[1].end],
+            b"('x',\n#1);"
+        );
+        assert_eq!(s.instances[2].ty, UNKNOWN_TYPE);
+        assert_eq!(s.problems.len(), 1);
+        assert!(data[s.data_end..].starts_with(b"ENDSEC"));
+    }
+
+    #[test]
+    fn fatal_scan_errors_name_the_instance() {
+        let (kind, _, id) = scan(b"DATA;#1=IFCWALL('abc);", 0, Schema::Ifc4).unwrap_err();
+        assert_eq!(
+            (kind, id),
+            (ReadErrorKind::UnterminatedString, Some(EntityId(1)))
+        );
+        let (kind, _, id) =
+            scan(b"DATA;#1=IFCWALL('abc');#2=IFCWALL(", 0, Schema::Ifc4).unwrap_err();
+        assert!(matches!(kind, ReadErrorKind::Truncated(_)));
+        assert_eq!(id, Some(EntityId(2)));
+        let (kind, _, _) = scan(b"DATA;#1=IFCWALL('abc');", 0, Schema::Ifc4).unwrap_err();
+        assert!(matches!(kind, ReadErrorKind::Truncated(_)));
+    }
+
+    #[test]
+    fn damaged_instances_are_skipped_with_a_problem() {
+        let s = scan(
+            b"DATA;#1 IFCWALL();garbage;#=X();#2=IFCWALL();ENDSEC;",
+            0,
+            Schema::Ifc4,
+        )
+        .unwrap();
+        assert_eq!(s.instances.len(), 1);
+        assert_eq!(s.problems.len(), 3);
+    }
+}
