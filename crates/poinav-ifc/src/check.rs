@@ -14,12 +14,14 @@ pub(crate) type Problem = (DiagnosticKind, Option<EntityId>, usize, String);
 struct Shape {
     attrs: usize,
     balanced: bool,
+    max_depth: usize,
     dangling: Vec<u64>,
 }
 
 /// Walks one argument list byte by byte; `exists` tells whether a referenced id is defined.
 fn shape(args: &[u8], exists: impl Fn(u64) -> bool) -> Shape {
     let mut depth = 0usize;
+    let mut max_depth = 0usize;
     let mut commas = 0;
     let mut saw_value = false;
     let mut dangling = Vec::new();
@@ -56,6 +58,7 @@ fn shape(args: &[u8], exists: impl Fn(u64) -> bool) -> Shape {
                     saw_value = true;
                 }
                 depth += 1;
+                max_depth = max_depth.max(depth);
             }
             b')' => {
                 if depth == 0 {
@@ -104,12 +107,13 @@ fn shape(args: &[u8], exists: impl Fn(u64) -> bool) -> Shape {
     Shape {
         attrs: if saw_value { commas + 1 } else { 0 },
         balanced,
+        max_depth,
         dangling,
     }
 }
 
 /// Dangling references, wrong attribute counts and unbalanced argument lists, checked in parallel.
-pub(crate) fn structure(model: &Model, _duplicates: &[u32]) -> Vec<Problem> {
+pub(crate) fn structure(model: &Model) -> Vec<Problem> {
     let schema = model.schema();
     let bytes = model.bytes();
     model
@@ -128,6 +132,18 @@ pub(crate) fn structure(model: &Model, _duplicates: &[u32]) -> Vec<Problem> {
                         "unbalanced parentheses in the argument list".to_string(),
                     ));
                     continue;
+                }
+                if s.max_depth > crate::value::MAX_NESTING {
+                    out.push((
+                        DiagnosticKind::BadValue,
+                        Some(inst.id),
+                        inst.start,
+                        format!(
+                            "an attribute nests lists {} deep (limit {}); that attribute cannot be read, the others can",
+                            s.max_depth - 1,
+                            crate::value::MAX_NESTING
+                        ),
+                    ));
                 }
                 if let Some(t) = inst.type_id() {
                     let want = schema.attribute_count(t);

@@ -33,6 +33,9 @@ pub enum EditError {
     /// The attribute does not exist or the instance cannot be parsed.
     #[error(transparent)]
     Attribute(#[from] AttrError),
+    /// `remove` was called after `add` (ids of added instances would depend on the order).
+    #[error("{0}: instances must be removed before any is added")]
+    RemoveAfterAdd(EntityId),
     /// Writing would replace the file that was read.
     #[error("refusing to overwrite the input file {0}")]
     WouldOverwriteInput(PathBuf),
@@ -52,7 +55,7 @@ pub enum NewProperty {
     /// IfcPropertyEnumeratedValue: typed values, and the IfcPropertyEnumeration listing the
     /// allowed values (see [`Editor::add_enumeration`]).
     Enumerated(Vec<Arg>, Option<EntityId>),
-    /// IfcPropertyListValue with typed values.
+    /// IfcPropertyListValue with typed values (an empty list is written as `$`).
     List(Vec<Arg>),
 }
 
@@ -60,7 +63,7 @@ pub enum NewProperty {
 #[derive(Debug)]
 pub struct Editor<'m> {
     model: &'m Model,
-    next_id: u64,
+    next_id: Option<u64>,
     added: Vec<(EntityId, String)>,
     replaced: FxHashMap<u32, Vec<u8>>,
     removed: FxHashSet<u32>,
@@ -69,11 +72,13 @@ pub struct Editor<'m> {
 }
 
 impl<'m> Editor<'m> {
-    /// Starts editing `model`; new instances get ids above the current maximum.
+    /// Starts editing `model`. New instances get ids above the largest id that is not removed
+    /// when the first instance is added, so remove before you add: removing what an earlier
+    /// run appended and adding it again then reproduces the same ids (idempotent edits).
     pub fn new(model: &'m Model) -> Editor<'m> {
         Editor {
             model,
-            next_id: model.max_id().0 + 1,
+            next_id: None,
             added: Vec::new(),
             replaced: FxHashMap::default(),
             removed: FxHashSet::default(),
@@ -108,7 +113,19 @@ impl<'m> Editor<'m> {
                 want,
             });
         }
-        let id = EntityId(self.next_id);
+        let next = match self.next_id {
+            Some(n) => n,
+            None => {
+                let max = self
+                    .model
+                    .entities()
+                    .filter(|e| !self.removed.contains(&(e.position() as u32)))
+                    .map(|e| e.id().0)
+                    .max();
+                max.unwrap_or(0) + 1
+            }
+        };
+        let id = EntityId(next);
         let mut line = format!("#{}={}", id.0, def.upper);
         Arg::List(args)
             .write_step(&mut line)
@@ -117,7 +134,7 @@ impl<'m> Editor<'m> {
                 message,
             })?;
         line.push(';');
-        self.next_id += 1;
+        self.next_id = Some(next + 1);
         self.added.push((id, line));
         Ok(id)
     }
@@ -176,9 +193,12 @@ impl<'m> Editor<'m> {
         Ok(())
     }
 
-    /// Removes instance `id` (and its line end) from the output.
+    /// Removes instance `id` (and its line end) from the output. Must come before any `add`.
     pub fn remove(&mut self, id: EntityId) -> Result<(), EditError> {
         let pos = self.position(id)?;
+        if self.next_id.is_some() {
+            return Err(EditError::RemoveAfterAdd(id));
+        }
         self.replaced.remove(&pos);
         self.removed.insert(pos);
         Ok(())
@@ -268,13 +288,15 @@ impl<'m> Editor<'m> {
         )
     }
 
-    /// Adds an IfcPropertySet named `name` with `properties`, attached to `objects` by one
-    /// IfcRelDefinesByProperties. GlobalIds are `GlobalId::from_name(guid_seed, ...)`, so the
-    /// same seed gives the same file. Returns the property set's id.
+    /// Adds an IfcPropertySet named `name` (with an optional Description) holding
+    /// `properties`, attached to `objects` by one IfcRelDefinesByProperties. GlobalIds are
+    /// `GlobalId::from_name(guid_seed, ...)`, so the same seed gives the same file. Returns the
+    /// property set's id.
     pub fn add_property_set(
         &mut self,
         objects: &[EntityId],
         name: &str,
+        description: Option<&str>,
         properties: Vec<(String, NewProperty)>,
         guid_seed: &str,
     ) -> Result<EntityId, EditError> {
@@ -295,10 +317,18 @@ impl<'m> Editor<'m> {
                         reference.map_or(Arg::Null, Arg::Ref),
                     ],
                 )?,
-                NewProperty::List(vs) => self.add(
-                    "IfcPropertyListValue",
-                    vec![Arg::Text(pname), Arg::Null, Arg::List(vs), Arg::Null],
-                )?,
+                NewProperty::List(vs) => {
+                    // ListValues is LIST [1:?]: an empty list is written as `$` (optional in IFC4+).
+                    let values = if vs.is_empty() {
+                        Arg::Null
+                    } else {
+                        Arg::List(vs)
+                    };
+                    self.add(
+                        "IfcPropertyListValue",
+                        vec![Arg::Text(pname), Arg::Null, values, Arg::Null],
+                    )?
+                }
             };
             props.push(Arg::Ref(id));
         }
@@ -309,7 +339,7 @@ impl<'m> Editor<'m> {
                 Arg::Text(pset_guid.to_string()),
                 owner.clone(),
                 Arg::Text(name.into()),
-                Arg::Null,
+                description.map_or(Arg::Null, |d| Arg::Text(d.into())),
                 Arg::List(props),
             ],
         )?;
@@ -435,6 +465,7 @@ mod tests {
             .add_property_set(
                 &[EntityId(2)],
                 "Pset_Test",
+                None,
                 vec![(
                     "Width".into(),
                     NewProperty::Single(Arg::typed("IfcLengthMeasure", Arg::Real(1.2))),

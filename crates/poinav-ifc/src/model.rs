@@ -102,24 +102,35 @@ impl Model {
             ));
         }
         diagnostics.extend(scanned.problems);
-        let (ids, duplicates) = build_id_index(&scanned.instances);
-        for &i in &duplicates {
-            let inst = &scanned.instances[i as usize];
-            diagnostics.push((
-                DiagnosticKind::DuplicateId,
-                Some(inst.id),
-                inst.start,
-                format!(
-                    "{} is defined more than once; the first definition is used",
-                    inst.id
-                ),
-            ));
+        let mut instances = scanned.instances;
+        let (mut ids, duplicates) = build_id_index(&instances);
+        if !duplicates.is_empty() {
+            for &i in &duplicates {
+                let inst = &instances[i as usize];
+                diagnostics.push((
+                    DiagnosticKind::DuplicateId,
+                    Some(inst.id),
+                    inst.start,
+                    format!(
+                        "{} is defined more than once; the first definition is used, this one is ignored (and kept in written copies)",
+                        inst.id
+                    ),
+                ));
+            }
+            // Later definitions leave the index; their bytes stay in the file.
+            let dropped: rustc_hash::FxHashSet<u32> = duplicates.iter().copied().collect();
+            let mut k = 0u32;
+            instances.retain(|_| {
+                k += 1;
+                !dropped.contains(&(k - 1))
+            });
+            ids = build_id_index(&instances).0;
         }
         let mut model = Model {
             file,
             bytes,
             header,
-            instances: scanned.instances,
+            instances,
             ids,
             diagnostics: Vec::new(),
             data_end: scanned.data_end,
@@ -127,7 +138,7 @@ impl Model {
             by_type: OnceLock::new(),
             inverses: Mutex::new(FxHashMap::default()),
         };
-        diagnostics.extend(check::structure(&model, &duplicates));
+        diagnostics.extend(check::structure(&model));
         diagnostics.extend(check::non_utf8(&model));
         diagnostics.extend(check::cycles(&model));
         model.diagnostics = model.finish_diagnostics(diagnostics);

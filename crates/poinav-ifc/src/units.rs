@@ -58,21 +58,24 @@ pub fn si_prefix(prefix: &str) -> Option<f64> {
     })
 }
 
-/// Metres per unit for an `IfcSIUnit` or `IfcConversionBasedUnit` of length; `depth` guards loops.
+/// Size of `unit` (an IfcSIUnit or IfcConversionBasedUnit) in SI base units, with its name.
+/// `.MILLI. .SQUARE_METRE.` is 1e-6: the prefix applies to the metre before squaring.
 fn unit_scale(unit: Entity<'_>, depth: usize) -> Option<(f64, String)> {
     if depth > 8 {
         return None;
     }
     if unit.is_a("IfcSIUnit") {
         let name = unit.get("Name")?.as_enum()?.to_string();
-        if name != "METRE" {
-            return None;
-        }
+        let power = match name.as_str() {
+            "SQUARE_METRE" => 2,
+            "CUBIC_METRE" => 3,
+            _ => 1,
+        };
         return match unit
             .get("Prefix")
             .and_then(|p| p.as_enum().map(str::to_string))
         {
-            Some(p) => Some((si_prefix(&p)?, format!("{p} METRE"))),
+            Some(p) => Some((si_prefix(&p)?.powi(power), format!("{p} {name}"))),
             None => Some((1.0, name)),
         };
     }
@@ -86,12 +89,10 @@ fn unit_scale(unit: Entity<'_>, depth: usize) -> Option<(f64, String)> {
     None
 }
 
-fn is_length(unit: &Entity<'_>) -> bool {
-    unit.get("UnitType").and_then(|v| v.as_enum()) == Some("LENGTHUNIT")
-}
-
-/// The length unit of `model`: from `IfcProject.UnitsInContext`, else the first unit assignment.
-pub fn length_unit(model: &Model) -> LengthUnit {
+/// The project's unit of type `unit_type` (`LENGTHUNIT`, `AREAUNIT`, `PLANEANGLEUNIT`, ...):
+/// its size in SI units (m, m², rad) and name. From `IfcProject.UnitsInContext`, else the
+/// first unit assignment; `None` when the file declares no such unit.
+pub fn project_unit(model: &Model, unit_type: &str) -> Option<(f64, String)> {
     let from_project = model
         .instances_of("IfcProject")
         .first()
@@ -101,18 +102,37 @@ pub fn length_unit(model: &Model) -> LengthUnit {
         .chain(model.instances_of("IfcUnitAssignment"));
     for assignment in assignments {
         for unit in assignment.get_refs("Units") {
-            if is_length(&unit) {
-                if let Some((metres_per_unit, name)) = unit_scale(unit, 0) {
-                    return LengthUnit {
-                        metres_per_unit,
-                        name,
-                        declared: true,
-                    };
+            if unit.get("UnitType").and_then(|v| v.as_enum()) == Some(unit_type) {
+                if let Some(found) = unit_scale(unit, 0) {
+                    return Some(found);
                 }
             }
         }
     }
-    LengthUnit::assumed_metre()
+    None
+}
+
+/// The length unit of `model`: from `IfcProject.UnitsInContext`, else the first unit assignment.
+pub fn length_unit(model: &Model) -> LengthUnit {
+    match project_unit(model, "LENGTHUNIT") {
+        Some((metres_per_unit, name)) => LengthUnit {
+            metres_per_unit,
+            name,
+            declared: true,
+        },
+        None => LengthUnit::assumed_metre(),
+    }
+}
+
+/// Square metres per area unit (the length unit squared when no area unit is declared).
+pub fn area_scale(model: &Model) -> f64 {
+    project_unit(model, "AREAUNIT")
+        .map_or_else(|| length_unit(model).metres_per_unit.powi(2), |(s, _)| s)
+}
+
+/// Radians per plane-angle unit (radians when none is declared).
+pub fn angle_scale(model: &Model) -> f64 {
+    project_unit(model, "PLANEANGLEUNIT").map_or(1.0, |(s, _)| s)
 }
 
 #[cfg(test)]
@@ -143,6 +163,10 @@ mod tests {
         );
         let none = model("#1=IFCUNITASSIGNMENT(());");
         assert!(!length_unit(&none).declared);
+        assert_eq!(area_scale(&mm), 1e-6, "no area unit: length unit squared");
+        let area = model("#1=IFCUNITASSIGNMENT((#2,#3,#4));#2=IFCSIUNIT(*,.LENGTHUNIT.,.MILLI.,.METRE.);#3=IFCSIUNIT(*,.AREAUNIT.,.CENTI.,.SQUARE_METRE.);#4=IFCSIUNIT(*,.PLANEANGLEUNIT.,$,.RADIAN.);");
+        assert!((area_scale(&area) - 1e-4).abs() < 1e-18);
+        assert_eq!(angle_scale(&area), 1.0);
     }
 
     proptest! {

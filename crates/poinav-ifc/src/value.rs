@@ -160,7 +160,7 @@ pub fn split_args(args: &[u8]) -> Result<Vec<std::ops::Range<usize>>, ValueError
     loop {
         p.ws();
         let start = p.pos;
-        p.skip_value(1)?;
+        p.skip_value()?;
         spans.push(start..p.pos);
         p.ws();
         match p.next() {
@@ -378,48 +378,50 @@ impl<'a> Parser<'a> {
         }
     }
 
-    /// Skips one value without building it (for [`split_args`]).
-    fn skip_value(&mut self, depth: usize) -> Result<(), ValueError> {
+    /// Skips one value without building it (for [`split_args`]). Lists are skipped by counting
+    /// parentheses, without recursion, so a deeply nested attribute cannot hide its neighbours.
+    fn skip_value(&mut self) -> Result<(), ValueError> {
         match self.peek() {
             Some(q @ (b'\'' | b'"')) => {
                 self.pos = self.string_end(q)? + 1;
                 Ok(())
             }
-            Some(b'(') => {
-                if depth >= MAX_NESTING {
-                    return Err(self.err(self.pos, "lists nested too deeply"));
-                }
-                self.pos += 1;
-                self.ws();
-                if self.peek() == Some(b')') {
-                    self.pos += 1;
-                    return Ok(());
-                }
-                loop {
-                    self.ws();
-                    self.skip_value(depth + 1)?;
-                    self.ws();
-                    match self.next() {
-                        Some(b',') => continue,
-                        Some(b')') => return Ok(()),
-                        _ => {
-                            return Err(self.err(self.pos.saturating_sub(1), "expected `,` or `)`"))
-                        }
-                    }
-                }
-            }
+            Some(b'(') => self.skip_balanced(),
             Some(c) if c.is_ascii_alphabetic() => {
                 while matches!(self.peek(), Some(c) if c.is_ascii_alphanumeric() || c == b'_') {
                     self.pos += 1;
                 }
                 self.ws();
-                self.expect(b'(')?;
-                self.ws();
-                self.skip_value(depth + 1)?;
-                self.ws();
-                self.expect(b')')
+                if self.peek() != Some(b'(') {
+                    return Err(self.err(self.pos, "expected `(`"));
+                }
+                self.skip_balanced()
             }
-            _ => self.value(depth).map(|_| ()),
+            _ => self.value(0).map(|_| ()),
+        }
+    }
+
+    fn skip_balanced(&mut self) -> Result<(), ValueError> {
+        let start = self.pos;
+        let mut depth = 0usize;
+        loop {
+            match self.peek() {
+                None => return Err(self.err(start, "unbalanced parentheses")),
+                Some(q @ (b'\'' | b'"')) => {
+                    self.pos = self.string_end(q)? + 1;
+                    continue;
+                }
+                Some(b'(') => depth += 1,
+                Some(b')') => {
+                    depth -= 1;
+                    if depth == 0 {
+                        self.pos += 1;
+                        return Ok(());
+                    }
+                }
+                _ => {}
+            }
+            self.pos += 1;
         }
     }
 }
@@ -480,8 +482,14 @@ mod tests {
                 String::from_utf8_lossy(bad)
             );
         }
-        let deep = format!("{}{}", "(".repeat(100_000), ")".repeat(100_000));
+        let deep = format!("(1,{}{},2)", "(".repeat(100_000), ")".repeat(100_000));
         assert!(parse_args(deep.as_bytes()).is_err());
-        assert!(split_args(deep.as_bytes()).is_err());
+        // Splitting does not recurse: the neighbours of a too-deep attribute stay readable.
+        assert_eq!(split_args(deep.as_bytes()).unwrap().len(), 3);
+        assert_eq!(
+            parse_arg(deep.as_bytes(), 2).unwrap(),
+            Some(Value::Integer(2))
+        );
+        assert!(parse_arg(deep.as_bytes(), 1).is_err());
     }
 }

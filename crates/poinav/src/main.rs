@@ -1,5 +1,6 @@
 //! The `poinav` command line: make building models (IFC) robot-ready.
 
+mod enrich;
 mod inspect;
 
 use std::process::ExitCode;
@@ -18,6 +19,8 @@ struct Cli {
 enum Command {
     /// Summarise an IFC file: schema, unit, storeys, counts per class, spaces, doors, diagnostics.
     Inspect(inspect::Args),
+    /// Add robot POI semantics (three property sets) to a copy of an IFC file; write CSV and IDS.
+    Enrich(enrich::Args),
 }
 
 /// Exit code for unreadable input, or diagnostics under `--strict`.
@@ -27,6 +30,7 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Inspect(args) => inspect::run(&args),
+        Command::Enrich(args) => enrich::run(&args),
     };
     match result {
         Ok(code) => code,

@@ -41,6 +41,7 @@ fn added_property_sets_round_trip_through_ifcopenshell_and_keep_every_line() {
             ed.add_property_set(
                 &[t.id()],
                 PSET,
+                None,
                 vec![
                     (
                         "Width".into(),

@@ -1,0 +1,281 @@
+//! Classification: apply the rules and a robot profile to every candidate element of a model,
+//! giving its POI category, type, roles, accessibility and coordination values.
+
+use poinav_ifc::{spatial, Entity, EntityId, Model};
+use rayon::prelude::*;
+
+use crate::facts::{FactContext, Facts};
+use crate::profile::RobotProfile;
+use crate::rules::{AccessibilityKind, Coordination, RuleSet};
+use crate::taxonomy::{AccessibilityStatus, Category, PoiType, Role, ValidationMethod};
+
+/// Pset_RobotAccessibility values for one element and profile.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Accessibility {
+    /// Required clear width (the profile's), metres.
+    pub min_clearance_width_m: f64,
+    /// Required clear height (the profile's), metres.
+    pub min_clearance_height_m: f64,
+    /// The verdict.
+    pub status: AccessibilityStatus,
+    /// How it was reached.
+    pub method: ValidationMethod,
+    /// Why, in words (`clear width 0.785 m < required 0.900 m`).
+    pub reason: String,
+}
+
+/// One classified element.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Classified {
+    /// The element.
+    pub id: EntityId,
+    /// Its GlobalId.
+    pub global_id: String,
+    /// Its class (`IfcDoor`).
+    pub class: String,
+    /// Its Name.
+    pub name: Option<String>,
+    /// Its storey's name.
+    pub storey: Option<String>,
+    /// The winning rule's id.
+    pub rule: String,
+    /// POI_Category.
+    pub category: Category,
+    /// POI_Type.
+    pub poi_type: PoiType,
+    /// POI_PrimaryRoles.
+    pub primary: Vec<Role>,
+    /// POI_ConditionalRoles.
+    pub conditional: Vec<Role>,
+    /// Pset_RobotAccessibility, when the rule asks for it.
+    pub accessibility: Option<Accessibility>,
+    /// Pset_RobotCoordination, when the rule gives it.
+    pub coordination: Option<Coordination>,
+    /// What the rules saw.
+    pub facts: Facts,
+}
+
+/// The classification of a model for one profile.
+#[derive(Debug, Clone)]
+pub struct Classification {
+    /// The profile used.
+    pub profile: RobotProfile,
+    /// Classified elements in file order.
+    pub elements: Vec<Classified>,
+}
+
+impl Classification {
+    /// The element `id`, if it was classified.
+    pub fn get(&self, id: EntityId) -> Option<&Classified> {
+        self.elements
+            .binary_search_by_key(&id, |c| c.id)
+            .ok()
+            .map(|i| &self.elements[i])
+            .or_else(|| self.elements.iter().find(|c| c.id == id))
+    }
+}
+
+fn fmt_m(v: f64) -> String {
+    format!("{v:.3} m")
+}
+
+fn element_access(
+    kind: AccessibilityKind,
+    facts: &Facts,
+    profile: &RobotProfile,
+) -> Option<(AccessibilityStatus, String)> {
+    use AccessibilityStatus::*;
+    let need = profile.min_clearance_width();
+    Some(match kind {
+        AccessibilityKind::None | AccessibilityKind::Space => return None,
+        AccessibilityKind::Blocked => (
+            Blocked,
+            format!("{} is not passable by a ground robot", facts.class),
+        ),
+        AccessibilityKind::Stairs if profile.climbs_stairs() => (
+            FullAccess,
+            format!("profile {} climbs stairs", profile.name),
+        ),
+        AccessibilityKind::Stairs => (
+            Blocked,
+            format!(
+                "stairs are not passable for a {:?} robot",
+                profile.locomotion
+            )
+            .to_lowercase(),
+        ),
+        AccessibilityKind::Slope => match facts.slope_deg {
+            Some(s) if s <= profile.max_slope_deg => (
+                FullAccess,
+                format!("slope {s:.1} deg <= max {:.1} deg", profile.max_slope_deg),
+            ),
+            Some(s) => (
+                Blocked,
+                format!("slope {s:.1} deg > max {:.1} deg", profile.max_slope_deg),
+            ),
+            None => (PendingValidation, "slope unknown".into()),
+        },
+        AccessibilityKind::ClearWidth => {
+            let source = facts.clear_width_source.unwrap_or("unknown");
+            match facts.clear_width_m {
+                Some(w) if w >= need => (
+                    FullAccess,
+                    format!(
+                        "clear width {} ({source}) >= required {}",
+                        fmt_m(w),
+                        fmt_m(need)
+                    ),
+                ),
+                Some(w) if w >= profile.width_m => (
+                    Restricted,
+                    format!(
+                        "clear width {} ({source}) < required {}, >= robot width {}",
+                        fmt_m(w),
+                        fmt_m(need),
+                        fmt_m(profile.width_m)
+                    ),
+                ),
+                Some(w) => (
+                    Blocked,
+                    format!(
+                        "clear width {} ({source}) < robot width {}",
+                        fmt_m(w),
+                        fmt_m(profile.width_m)
+                    ),
+                ),
+                None => (PendingValidation, "clear width unknown".into()),
+            }
+        }
+    })
+}
+
+/// Classifies every element of `model` that a rule matches, for `profile`.
+pub fn classify(model: &Model, rules: &RuleSet, profile: &RobotProfile) -> Classification {
+    let ctx = FactContext::new(model);
+    let mut candidates: Vec<Entity<'_>> = rules
+        .classes()
+        .iter()
+        .flat_map(|c| model.instances_of(c))
+        .collect();
+    candidates.sort_by_key(|e| e.position());
+    candidates.dedup_by_key(|e| e.position());
+    let mut elements: Vec<Classified> = candidates
+        .par_iter()
+        .filter_map(|&e| {
+            let facts = ctx.facts(e);
+            let rule = rules.winner(&e, &facts, profile)?;
+            if rule.skip {
+                return None;
+            }
+            let mut conditional: Vec<Role> = rule
+                .conditional
+                .iter()
+                .filter(|c| c.when.holds(&facts, profile))
+                .map(|c| c.role)
+                .collect();
+            conditional.dedup();
+            let accessibility =
+                element_access(rule.accessibility, &facts, profile).map(|(status, reason)| {
+                    Accessibility {
+                        min_clearance_width_m: profile.min_clearance_width(),
+                        min_clearance_height_m: profile.min_clearance_height(),
+                        status,
+                        method: ValidationMethod::GeometricAnalysis,
+                        reason,
+                    }
+                });
+            let needs_space_access = rule.accessibility == AccessibilityKind::Space;
+            let mut c = Classified {
+                id: e.id(),
+                global_id: e.global_id().unwrap_or_default(),
+                class: e.type_name().to_string(),
+                name: e.name(),
+                storey: spatial::storey_of(e).and_then(|s| s.name()),
+                rule: rule.id.clone(),
+                category: rule.category.expect("compiled rules have a category"),
+                poi_type: rule.poi_type.expect("compiled rules have a type"),
+                primary: rule.roles.clone(),
+                conditional,
+                accessibility,
+                coordination: rule.coordination.clone(),
+                facts,
+            };
+            if needs_space_access {
+                // Filled in below, once every door has its status.
+                c.accessibility = Some(Accessibility {
+                    min_clearance_width_m: profile.min_clearance_width(),
+                    min_clearance_height_m: profile.min_clearance_height(),
+                    status: AccessibilityStatus::PendingValidation,
+                    method: ValidationMethod::GeometricAnalysis,
+                    reason: String::new(),
+                });
+            }
+            Some(c)
+        })
+        .collect();
+    elements.sort_by_key(|c| c.id);
+    let mut result = Classification {
+        profile: profile.clone(),
+        elements,
+    };
+    space_access(&ctx, &mut result);
+    result
+        .elements
+        .sort_by_key(|c| model.entity(c.id).map(|e| e.position()));
+    result
+}
+
+/// A space's status from its doors: FULL_ACCESS if one door is, else RESTRICTED if one is,
+/// else BLOCKED; PENDING_VALIDATION when no door is known.
+fn space_access(ctx: &FactContext<'_>, result: &mut Classification) {
+    use AccessibilityStatus::*;
+    let mut updates = Vec::new();
+    for (i, c) in result.elements.iter().enumerate() {
+        if c.class != "IfcSpace" || c.accessibility.is_none() {
+            continue;
+        }
+        let doors = ctx.doors_of_space(c.id);
+        let statuses: Vec<AccessibilityStatus> = doors
+            .iter()
+            .filter_map(|d| result.elements.binary_search_by_key(d, |x| x.id).ok())
+            .filter_map(|k| result.elements[k].accessibility.as_ref().map(|a| a.status))
+            .collect();
+        let count = |s| statuses.iter().filter(|&&x| x == s).count();
+        let (status, reason) = if statuses.is_empty() {
+            (
+                PendingValidation,
+                "no door on the space boundary is known".to_string(),
+            )
+        } else if count(FullAccess) > 0 {
+            (
+                FullAccess,
+                format!(
+                    "{} of {} doors FULL_ACCESS",
+                    count(FullAccess),
+                    statuses.len()
+                ),
+            )
+        } else if count(Restricted) > 0 {
+            (
+                Restricted,
+                format!(
+                    "no door FULL_ACCESS, {} of {} RESTRICTED",
+                    count(Restricted),
+                    statuses.len()
+                ),
+            )
+        } else {
+            (
+                Blocked,
+                format!("all {} doors BLOCKED or unknown", statuses.len()),
+            )
+        };
+        updates.push((i, status, reason));
+    }
+    for (i, status, reason) in updates {
+        if let Some(a) = result.elements[i].accessibility.as_mut() {
+            a.status = status;
+            a.reason = reason;
+        }
+    }
+}

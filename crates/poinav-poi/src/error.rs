@@ -1,0 +1,25 @@
+//! `PoiError`: why rules, profiles or enrichment failed, naming the file (and rule) at fault.
+
+/// Errors of the POI layer.
+#[derive(Debug, thiserror::Error)]
+pub enum PoiError {
+    /// A file could not be read.
+    #[error("{file}: {message}")]
+    Io { file: String, message: String },
+    /// A TOML file is malformed (the message carries line and column).
+    #[error("{file}: {message}")]
+    Toml { file: String, message: String },
+    /// A value in a file is out of range or inconsistent.
+    #[error("{file}: {message}")]
+    Invalid { file: String, message: String },
+    /// A rule is malformed.
+    #[error("{file}: rule `{rule}`: {message}")]
+    Rule {
+        file: String,
+        rule: String,
+        message: String,
+    },
+    /// Writing the enriched model failed.
+    #[error(transparent)]
+    Edit(#[from] poinav_ifc::EditError),
+}

@@ -1,0 +1,288 @@
+//! `Facts`: what the rules can test about one element: class, names, property values and
+//! derived measures (clear width, area, door count, ...), all lengths in metres.
+
+use std::collections::BTreeMap;
+
+use poinav_ifc::property::{self, PropertyValue, Scalar};
+use poinav_ifc::{spatial, Entity, EntityId, Model};
+use rustc_hash::FxHashMap;
+
+/// Measures a rule condition may use, all in metres, square metres or degrees.
+pub const MEASURES: &[&str] = &[
+    "overall_width_m",
+    "overall_height_m",
+    "clear_width_m",
+    "clear_height_m",
+    "area_m2",
+    "elongation",
+    "door_count",
+    "slope_deg",
+    "is_external",
+    "storey_elevation_m",
+];
+
+/// A property value reduced to what rules compare.
+#[derive(Debug, Clone, PartialEq)]
+pub enum FactValue {
+    /// Text, labels and enumeration items.
+    Text(String),
+    /// Numbers (lengths not converted: property values are in the file's units).
+    Number(f64),
+    /// Booleans and logicals.
+    Bool(bool),
+    /// Lists and enumerated values (as text).
+    List(Vec<String>),
+}
+
+impl FactValue {
+    /// The value as text (lists joined by `,`).
+    pub fn text(&self) -> String {
+        match self {
+            FactValue::Text(t) => t.clone(),
+            FactValue::Number(n) => n.to_string(),
+            FactValue::Bool(b) => b.to_string(),
+            FactValue::List(l) => l.join(","),
+        }
+    }
+}
+
+/// Everything rules can test about one element.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Facts {
+    /// IFC class in schema spelling (`IfcWallStandardCase`).
+    pub class: String,
+    /// PredefinedType (or ObjectType when it is USERDEFINED).
+    pub predefined_type: Option<String>,
+    /// Name.
+    pub name: Option<String>,
+    /// LongName (spaces, storeys).
+    pub long_name: Option<String>,
+    /// ObjectType.
+    pub object_type: Option<String>,
+    /// `Pset.Property` -> value, type properties merged under the occurrence's.
+    pub properties: BTreeMap<String, FactValue>,
+    /// OverallWidth in metres (doors, windows).
+    pub overall_width_m: Option<f64>,
+    /// OverallHeight in metres.
+    pub overall_height_m: Option<f64>,
+    /// Clear passage width in metres.
+    pub clear_width_m: Option<f64>,
+    /// Clear passage height in metres.
+    pub clear_height_m: Option<f64>,
+    /// Floor area in square metres.
+    pub area_m2: Option<f64>,
+    /// Long side / short side of the footprint's minimum bounding rectangle.
+    pub elongation: Option<f64>,
+    /// Number of distinct doors on the boundary of a space.
+    pub door_count: Option<f64>,
+    /// Slope in degrees (ramps).
+    pub slope_deg: Option<f64>,
+    /// IsExternal of the class's common property set.
+    pub is_external: Option<bool>,
+    /// Elevation of the element's storey in metres.
+    pub storey_elevation_m: Option<f64>,
+    /// Where the clear width came from (`lining`, `overall width`, `geometry`).
+    pub clear_width_source: Option<&'static str>,
+}
+
+impl Facts {
+    /// A measure by name (see [`MEASURES`]); booleans are 1 or 0.
+    pub fn measure(&self, name: &str) -> Option<f64> {
+        match name {
+            "overall_width_m" => self.overall_width_m,
+            "overall_height_m" => self.overall_height_m,
+            "clear_width_m" => self.clear_width_m,
+            "clear_height_m" => self.clear_height_m,
+            "area_m2" => self.area_m2,
+            "elongation" => self.elongation,
+            "door_count" => self.door_count,
+            "slope_deg" => self.slope_deg,
+            "is_external" => self.is_external.map(|b| if b { 1.0 } else { 0.0 }),
+            "storey_elevation_m" => self.storey_elevation_m,
+            _ => None,
+        }
+    }
+}
+
+/// Model-wide context for computing facts: units and the space/door adjacency.
+#[derive(Debug)]
+pub struct FactContext<'m> {
+    model: &'m Model,
+    metres: f64,
+    square_metres: f64,
+    radians: f64,
+    /// Space -> doors on its boundary (from IfcRelSpaceBoundary).
+    space_doors: FxHashMap<EntityId, Vec<EntityId>>,
+}
+
+impl<'m> FactContext<'m> {
+    /// Prepares units and the space-boundary index of `model`.
+    pub fn new(model: &'m Model) -> FactContext<'m> {
+        let mut space_doors: FxHashMap<EntityId, Vec<EntityId>> = FxHashMap::default();
+        for b in model.instances_of("IfcRelSpaceBoundary") {
+            let (Some(space), Some(element)) = (
+                b.get_ref("RelatingSpace"),
+                b.get_ref("RelatedBuildingElement"),
+            ) else {
+                continue;
+            };
+            if element.is_a("IfcDoor") {
+                let doors = space_doors.entry(space.id()).or_default();
+                if !doors.contains(&element.id()) {
+                    doors.push(element.id());
+                }
+            }
+        }
+        FactContext {
+            model,
+            metres: poinav_ifc::units::length_unit(model).metres_per_unit,
+            square_metres: poinav_ifc::units::area_scale(model),
+            radians: poinav_ifc::units::angle_scale(model),
+            space_doors,
+        }
+    }
+
+    /// The model.
+    pub fn model(&self) -> &'m Model {
+        self.model
+    }
+
+    /// Metres per length unit of the file.
+    pub fn metres_per_unit(&self) -> f64 {
+        self.metres
+    }
+
+    /// Doors on the boundary of `space` (IfcRelSpaceBoundary), in file order of the boundaries.
+    pub fn doors_of_space(&self, space: EntityId) -> &[EntityId] {
+        self.space_doors.get(&space).map_or(&[], Vec::as_slice)
+    }
+
+    /// True when the model has space boundaries at all (door counts are meaningful).
+    pub fn has_space_boundaries(&self) -> bool {
+        !self.space_doors.is_empty()
+    }
+
+    /// Computes the facts of `e`.
+    pub fn facts(&self, e: Entity<'m>) -> Facts {
+        let mut f = Facts {
+            class: e.type_name().to_string(),
+            name: e.name(),
+            long_name: e.get_str("LongName"),
+            object_type: e.get_str("ObjectType"),
+            ..Facts::default()
+        };
+        f.predefined_type = e
+            .get("PredefinedType")
+            .and_then(|v| v.as_enum().map(str::to_string));
+        if f.predefined_type.as_deref() == Some("USERDEFINED") {
+            f.predefined_type = f.object_type.clone().or(f.predefined_type);
+        }
+        for set in property::property_sets(e) {
+            for p in set.properties {
+                if let Some(v) = fact_value(&p.value) {
+                    f.properties.insert(format!("{}.{}", set.name, p.name), v);
+                }
+            }
+        }
+        f.is_external = f.properties.iter().find_map(|(k, v)| match v {
+            FactValue::Bool(b) if k.ends_with("Common.IsExternal") => Some(*b),
+            _ => None,
+        });
+        f.overall_width_m = e.get_f64("OverallWidth").map(|w| w * self.metres);
+        f.overall_height_m = e.get_f64("OverallHeight").map(|h| h * self.metres);
+        if e.is_a("IfcDoor") || e.is_a("IfcWindow") {
+            let lining = lining_thickness(e).map(|t| t * self.metres);
+            match (f.overall_width_m, lining) {
+                (Some(w), Some(t)) if t > 0.0 && w > 2.0 * t => {
+                    f.clear_width_m = Some(w - 2.0 * t);
+                    f.clear_height_m = f.overall_height_m.map(|h| h - t);
+                    f.clear_width_source = Some("lining");
+                }
+                (Some(w), _) => {
+                    f.clear_width_m = Some(w);
+                    f.clear_height_m = f.overall_height_m;
+                    f.clear_width_source = Some("overall width");
+                }
+                _ => {}
+            }
+        }
+        if e.is_a("IfcSpace") {
+            f.area_m2 = space_area(e).map(|a| a * self.square_metres);
+            if self.has_space_boundaries() {
+                f.door_count = Some(self.doors_of_space(e.id()).len() as f64);
+            }
+        }
+        if e.is_a("IfcRamp") || e.is_a("IfcRampFlight") {
+            f.slope_deg = [
+                "Pset_RampFlightCommon.Slope",
+                "Pset_RampCommon.RequiredSlope",
+                "Pset_RampFlightCommon.RequiredSlope",
+            ]
+            .iter()
+            .find_map(|k| match f.properties.get(*k) {
+                Some(FactValue::Number(a)) => Some((a * self.radians).to_degrees()),
+                _ => None,
+            });
+        }
+        f.storey_elevation_m = spatial::storey_of(e)
+            .and_then(|s| s.get_f64("Elevation"))
+            .map(|z| z * self.metres);
+        f
+    }
+}
+
+fn fact_value(v: &PropertyValue) -> Option<FactValue> {
+    let text = |s: &poinav_ifc::property::TypedScalar| match &s.value {
+        Scalar::Text(t) | Scalar::Enum(t) => t.clone(),
+        Scalar::Real(r) => r.to_string(),
+        Scalar::Integer(i) => i.to_string(),
+        Scalar::Bool(b) => b.to_string(),
+        Scalar::Logical(l) => l.map_or("UNKNOWN".into(), |b| b.to_string()),
+        Scalar::Ref(id) => id.to_string(),
+    };
+    match v {
+        PropertyValue::Single(Some(s)) => Some(match &s.value {
+            Scalar::Text(t) | Scalar::Enum(t) => FactValue::Text(t.clone()),
+            Scalar::Real(r) => FactValue::Number(*r),
+            Scalar::Integer(i) => FactValue::Number(*i as f64),
+            Scalar::Bool(b) => FactValue::Bool(*b),
+            Scalar::Logical(Some(b)) => FactValue::Bool(*b),
+            Scalar::Logical(None) | Scalar::Ref(_) => return None,
+        }),
+        PropertyValue::Enumerated(items) | PropertyValue::List(items) => {
+            Some(FactValue::List(items.iter().map(text).collect()))
+        }
+        _ => None,
+    }
+}
+
+/// LiningThickness from an IfcDoorLiningProperties / IfcWindowLiningProperties of the
+/// occurrence or its type, in file units.
+fn lining_thickness(e: Entity<'_>) -> Option<f64> {
+    let defs = property::own_definitions(e)
+        .into_iter()
+        .chain(property::type_definitions(e));
+    defs.filter(|d| d.is_a("IfcDoorLiningProperties") || d.is_a("IfcWindowLiningProperties"))
+        .find_map(|d| d.get_f64("LiningThickness"))
+}
+
+/// Floor area of a space from its quantities (NetFloorArea, else GrossFloorArea), file units.
+fn space_area(space: Entity<'_>) -> Option<f64> {
+    let mut gross = None;
+    for def in property::own_definitions(space) {
+        if !def.is_a("IfcElementQuantity") {
+            continue;
+        }
+        for q in def.get_refs("Quantities") {
+            if !q.is_a("IfcQuantityArea") {
+                continue;
+            }
+            match q.name().as_deref() {
+                Some("NetFloorArea") => return q.get_f64("AreaValue"),
+                Some("GrossFloorArea") => gross = gross.or(q.get_f64("AreaValue")),
+                _ => {}
+            }
+        }
+    }
+    gross
+}

@@ -1,0 +1,273 @@
+//! `poinav enrich` on every corpus file, checked with IfcOpenShell: the property sets it reads
+//! equal our CSV, validation finds no new error, every original line is kept byte for byte,
+//! re-enriching is byte-identical, the input is untouched, and lengths are in the file's unit.
+
+mod common;
+
+use std::collections::HashMap;
+use std::ffi::OsStr;
+use std::path::{Path, PathBuf};
+
+use serde_json::Value;
+
+const EPOCH: &str = "1795314600";
+const STAMP: &str = "2026-11-22T02:30:00";
+
+fn enrich(input: &Path, output: &Path, extra: &[&OsStr]) -> Value {
+    let mut args: Vec<&OsStr> = vec![
+        OsStr::new("enrich"),
+        input.as_os_str(),
+        OsStr::new("-o"),
+        output.as_os_str(),
+        OsStr::new("--json"),
+    ];
+    args.extend_from_slice(extra);
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_poinav"))
+        .args(&args)
+        .env("SOURCE_DATE_EPOCH", EPOCH)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}: {}",
+        input.display(),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).unwrap()
+}
+
+fn number(s: &str) -> Value {
+    Value::from(s.parse::<f64>().unwrap())
+}
+
+/// What IfcOpenShell must read for one CSV row.
+fn expected_sets(row: &HashMap<String, String>, prefix: &str, ifc2x3: bool) -> Value {
+    let list = |s: &str| Value::from(s.split(';').filter(|x| !x.is_empty()).collect::<Vec<_>>());
+    let mut class = serde_json::json!({
+        "POI_Category": [row["POI_Category"]],
+        "POI_Type": [row["POI_Type"]],
+        "POI_PrimaryRoles": list(&row["POI_PrimaryRoles"]),
+    });
+    if !row["POI_ConditionalRoles"].is_empty() {
+        class["POI_ConditionalRoles"] = list(&row["POI_ConditionalRoles"]);
+    } else if !ifc2x3 {
+        class["POI_ConditionalRoles"] = Value::Null;
+    }
+    let mut sets = serde_json::Map::new();
+    sets.insert(format!("{prefix}POI_Classification"), class);
+    if !row["AccessibilityStatus"].is_empty() {
+        sets.insert(
+            format!("{prefix}RobotAccessibility"),
+            serde_json::json!({
+                "MinClearanceWidth": number(&row["MinClearanceWidth"]),
+                "MinClearanceHeight": number(&row["MinClearanceHeight"]),
+                "AccessibilityStatus": [row["AccessibilityStatus"]],
+                "ValidationMethod": [row["ValidationMethod"]],
+                "LastValidated": row["LastValidated"],
+            }),
+        );
+    }
+    if !row["MaxSimultaneousRobots"].is_empty() {
+        sets.insert(
+            format!("{prefix}RobotCoordination"),
+            serde_json::json!({
+                "MaxSimultaneousRobots": row["MaxSimultaneousRobots"].parse::<i64>().unwrap(),
+                "MinInterRobotSeparation": number(&row["MinInterRobotSeparation"]),
+                "CoordinationProtocol": [row["CoordinationProtocol"]],
+                "AppliesTo": [row["AppliesTo"]],
+            }),
+        );
+    }
+    Value::Object(sets)
+}
+
+fn read_csv(path: &Path) -> Vec<HashMap<String, String>> {
+    let mut r = csv::Reader::from_path(path).unwrap();
+    let headers = r.headers().unwrap().clone();
+    r.records()
+        .map(|rec| {
+            headers
+                .iter()
+                .zip(rec.unwrap().iter())
+                .map(|(h, v)| (h.to_string(), v.to_string()))
+                .collect()
+        })
+        .collect()
+}
+
+fn check_file(file: &Path, dir: &Path, prefix: &str) -> Vec<String> {
+    let mut problems = Vec::new();
+    let name = file.file_stem().unwrap().to_string_lossy().into_owned();
+    let before = std::fs::read(file).unwrap();
+    let out = dir.join(format!("{name}.{prefix}ifc"));
+    let csv_path = dir.join(format!("{name}.{prefix}csv"));
+    let summary = enrich(
+        file,
+        &out,
+        &[
+            OsStr::new("--csv"),
+            csv_path.as_os_str(),
+            OsStr::new("--pset-prefix"),
+            OsStr::new(prefix),
+        ],
+    );
+    assert_eq!(
+        std::fs::read(file).unwrap(),
+        before,
+        "{name}: input modified"
+    );
+
+    // Every original instance is byte-identical in the output.
+    let original = poinav_ifc::Model::open(file).unwrap();
+    let written = poinav_ifc::Model::open(&out).unwrap();
+    assert!(
+        written.diagnostics().is_empty(),
+        "{name}: enriched file has diagnostics: {:?}",
+        written.diagnostics().first()
+    );
+    for e in original.entities() {
+        match written.entity(e.id()) {
+            Some(w) if w.raw() == e.raw() => {}
+            _ => problems.push(format!("{name}: {} not kept byte for byte", e.id())),
+        }
+    }
+
+    // Enriching the output again gives the same bytes.
+    let again = dir.join(format!("{name}.{prefix}again.ifc"));
+    enrich(
+        &out,
+        &again,
+        &[OsStr::new("--pset-prefix"), OsStr::new(prefix)],
+    );
+    if std::fs::read(&again).unwrap() != std::fs::read(&out).unwrap() {
+        problems.push(format!("{name}: re-enrichment is not byte-identical"));
+    }
+
+    // IfcOpenShell reads exactly the CSV's values, and validation finds nothing new.
+    let rows = read_csv(&csv_path);
+    assert_eq!(
+        rows.len() as u64,
+        summary["elements"].as_u64().unwrap(),
+        "{name}: CSV rows"
+    );
+    let check = common::ifcos(
+        "enrich_check.py",
+        &[file.as_os_str(), out.as_os_str(), OsStr::new(prefix)],
+    );
+    let ifc2x3 = original.schema() == poinav_ifc::Schema::Ifc2x3;
+    let psets = check["psets"].as_object().unwrap();
+    if psets.len() != rows.len() {
+        problems.push(format!(
+            "{name}: IfcOpenShell sees {} enriched elements, CSV has {}",
+            psets.len(),
+            rows.len()
+        ));
+    }
+    for row in &rows {
+        let want = expected_sets(row, prefix, ifc2x3);
+        let got = &psets.get(&row["GlobalId"]).cloned().unwrap_or(Value::Null);
+        if *got != want {
+            problems.push(format!(
+                "{name}: {} {}: IfcOpenShell {got} vs CSV {want}",
+                row["GlobalId"], row["IfcClass"]
+            ));
+        }
+        if !row["LastValidated"].is_empty() && row["LastValidated"] != STAMP {
+            problems.push(format!(
+                "{name}: LastValidated {} is not SOURCE_DATE_EPOCH",
+                row["LastValidated"]
+            ));
+        }
+    }
+    for e in check["new_errors"].as_array().unwrap() {
+        problems.push(format!("{name}: new validation error: {e}"));
+    }
+    problems
+}
+
+#[test]
+fn enrichment_round_trips_through_ifcopenshell_on_every_corpus_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let files = common::corpus();
+    let problems: Vec<String> = std::thread::scope(|s| {
+        let chunks: Vec<Vec<PathBuf>> = files
+            .chunks(files.len().div_ceil(2))
+            .map(<[PathBuf]>::to_vec)
+            .collect();
+        let handles: Vec<_> = chunks
+            .into_iter()
+            .map(|chunk| {
+                let dir = dir.path().to_path_buf();
+                s.spawn(move || {
+                    chunk
+                        .iter()
+                        .flat_map(|f| check_file(f, &dir, "Pset_"))
+                        .collect::<Vec<_>>()
+                })
+            })
+            .collect();
+        handles
+            .into_iter()
+            .flat_map(|h| h.join().unwrap())
+            .collect()
+    });
+    assert!(
+        problems.is_empty(),
+        "{} problems:\n{}",
+        problems.len(),
+        problems.join("\n")
+    );
+}
+
+#[test]
+fn non_reserved_prefix_writes_the_same_sets_under_another_name() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = common::shared().join("ifc/fzk-haus-ifc4.ifc");
+    let problems = check_file(&file, dir.path(), "POINAV_");
+    assert!(problems.is_empty(), "{}", problems.join("\n"));
+    let text = std::fs::read_to_string(dir.path().join("fzk-haus-ifc4.POINAV_ifc")).unwrap();
+    assert!(
+        text.contains("'POINAV_POI_Classification'") && !text.contains("'Pset_POI_Classification'")
+    );
+}
+
+#[test]
+fn lengths_are_stored_in_the_files_unit() {
+    let dir = tempfile::tempdir().unwrap();
+    for (file, width, height) in [
+        (
+            "ifc4-test-model.ifc",
+            "IFCPOSITIVELENGTHMEASURE(900.0)",
+            "IFCPOSITIVELENGTHMEASURE(700.0)",
+        ),
+        (
+            "ifcopenhouse-ifc4.ifc",
+            "IFCPOSITIVELENGTHMEASURE(900.0)",
+            "IFCPOSITIVELENGTHMEASURE(700.0)",
+        ),
+        (
+            "wall-door-column-ifc4x3.ifc",
+            "IFCPOSITIVELENGTHMEASURE(2.952755906)",
+            "IFCPOSITIVELENGTHMEASURE(2.296587927)",
+        ),
+        (
+            "office-a.ifc",
+            "IFCPOSITIVELENGTHMEASURE(0.9)",
+            "IFCPOSITIVELENGTHMEASURE(0.7)",
+        ),
+    ] {
+        let out = dir.path().join(file);
+        enrich(&common::shared().join("ifc").join(file), &out, &[]);
+        let text = std::fs::read_to_string(&out).unwrap();
+        let line = text
+            .lines()
+            .find(|l| l.contains("'MinClearanceWidth'"))
+            .unwrap_or_else(|| panic!("{file}: no MinClearanceWidth"));
+        assert!(line.contains(width), "{file}: {line}");
+        let line = text
+            .lines()
+            .find(|l| l.contains("'MinClearanceHeight'"))
+            .unwrap();
+        assert!(line.contains(height), "{file}: {line}");
+    }
+}

@@ -1,0 +1,69 @@
+"""Check an enriched IFC against its original with IfcOpenShell.
+
+Usage: .venv/bin/python tests/ifcos/enrich_check.py ORIGINAL ENRICHED PREFIX [--no-validate]
+
+Prints one JSON object:
+  "psets":      {GlobalId: {set name: {property: value}}} for the three POI sets
+                (PREFIX + POI_Classification / RobotAccessibility / RobotCoordination) as
+                ifcopenshell.util.element.get_psets reads them (the "id" key dropped);
+  "new_errors": ifcopenshell.validate errors of ENRICHED that ORIGINAL does not have
+                (compared as multisets of the messages validate.py prints, with the
+                FILE_NAME entry quoted in header errors left out, as its time stamp changes).
+Exit 1 if a file cannot be opened.
+"""
+
+import collections
+import json
+import os
+import re
+import sys
+
+import ifcopenshell
+import ifcopenshell.util.element as uel
+import ifcopenshell.validate
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from validate import describe  # noqa: E402
+
+
+def normalise(message):
+    """Header errors quote the whole FILE_NAME, whose time stamp enrichment sets: compare
+    them without the quoted entry and the caret line under it."""
+    message = re.sub(r"FILE_NAME\(.*\)", "FILE_NAME(...)", message)
+    return "\n".join(line for line in message.split("\n") if not re.fullmatch(r"\s*\^+\s*", line))
+
+
+def errors(f):
+    logger = ifcopenshell.validate.json_logger()
+    ifcopenshell.validate.validate(f, logger)
+    return collections.Counter(normalise(describe(s)) for s in logger.statements if s.get("level") == "error")
+
+
+def main(argv):
+    validate = "--no-validate" not in argv
+    args = [a for a in argv if a != "--no-validate"]
+    if len(args) != 3:
+        print(__doc__.strip(), file=sys.stderr)
+        return 2
+    original, enriched, prefix = args
+    try:
+        before = ifcopenshell.open(original)
+        after = ifcopenshell.open(enriched)
+    except Exception as exc:
+        print(f"enrich_check: cannot open: {type(exc).__name__}: {exc}", file=sys.stderr)
+        return 1
+    names = [prefix + n for n in ("POI_Classification", "RobotAccessibility", "RobotCoordination")]
+    psets = {}
+    for element in after.by_type("IfcObject"):
+        sets = uel.get_psets(element, psets_only=True)
+        found = {n: {k: v for k, v in sets[n].items() if k != "id"} for n in names if n in sets}
+        if found:
+            psets[element.GlobalId] = found
+    new_errors = sorted((errors(after) - errors(before)).elements()) if validate else []
+    json.dump({"psets": psets, "new_errors": new_errors}, sys.stdout, indent=1, sort_keys=True, default=str)
+    sys.stdout.write("\n")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
