@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
-# The main job end to end: builds poinav in release mode and inspects every model of the
-# corpus, writing one JSON report per model and a summary table to out/demo/.
+# The main job end to end: builds poinav in release mode, inspects every model of the corpus
+# and enriches it with robot POI semantics, writing to out/demo/: per model the inspect report
+# (.json), the enriched IFC (.poi.ifc), the semantic CSV (.csv), the IDS (.ids) and the
+# enrichment summary (.enrich.json), plus a summary table.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
@@ -11,17 +13,20 @@ mkdir -p "$out"
 cargo build --release --locked -p poinav
 bin="$root/target/release/poinav"
 
-printf '%-44s %-12s %8s %7s %7s %7s %6s\n' file schema "unit(m)" storeys spaces doors diag | tee "$out/summary.txt"
+printf '%-44s %-12s %8s %7s %7s %7s %6s %8s %9s %9s\n' file schema "unit(m)" storeys spaces doors diag enriched corridors restricted | tee "$out/summary.txt"
 for f in "$shared"/ifc/*.ifc; do
     name="$(basename "$f" .ifc)"
     "$bin" inspect "$f" --json > "$out/$name.json"
-    python3 - "$out/$name.json" "$name" <<'PY' | tee -a "$out/summary.txt"
+    "$bin" enrich "$f" -o "$out/$name.poi.ifc" --csv "$out/$name.csv" --ids "$out/$name.ids" --json > "$out/$name.enrich.json"
+    python3 - "$out/$name.json" "$out/$name.enrich.json" "$name" <<'PY' | tee -a "$out/summary.txt"
 import json, sys
 r = json.load(open(sys.argv[1]))
-print(f"{sys.argv[2]:<44} {r['schema']:<12} {r['length_unit_m']:>8g} {len(r['storeys']):>7} {len(r['spaces']):>7} {len(r['doors']):>7} {r['diagnostics']:>6}")
+e = json.load(open(sys.argv[2]))
+doors = e["profiles"][0]["doors"]
+print(f"{sys.argv[3]:<44} {r['schema']:<12} {r['length_unit_m']:>8g} {len(r['storeys']):>7} {len(r['spaces']):>7} {len(r['doors']):>7} {r['diagnostics']:>6} {e['elements']:>8} {len(e['corridors']):>9} {doors['RESTRICTED']:>9}")
 PY
 done
 echo
-"$bin" inspect "$shared/ifc/office-a.ifc" | head -20
+"$bin" enrich "$shared/ifc/office-a.ifc" -o "$out/office-a.poi.ifc" | head -12
 echo
 echo "demo: reports written to $out"

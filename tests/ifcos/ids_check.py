@@ -30,7 +30,9 @@ def check(ids_path, ifc_path):
     try:
         spec = ids.open(ids_path, validate=True)
     except Exception as exc:
-        raise SystemExit(f"ids_check: {ids_path} is not a valid IDS 1.0 file: {type(exc).__name__}: {exc}")
+        detail = getattr(exc, "xml_error", None)
+        detail = f" ({getattr(detail, 'reason', None) or detail} at {getattr(detail, 'path', '?')})" if detail else ""
+        raise SystemExit(f"ids_check: {ids_path} is not a valid IDS 1.0 file: {type(exc).__name__}: {exc}{detail}")
     try:
         model = ifcopenshell.open(ifc_path)
     except Exception as exc:

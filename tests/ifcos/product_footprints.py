@@ -47,16 +47,17 @@ def main(path, classes):
     f = ifcopenshell.open(path)
     settings = ifcopenshell.geom.settings()
     settings.set("use-world-coords", True)
-    out = {}
-    for cls in classes:
-        for product in f.by_type(cls):
-            if product.Representation is None:
-                continue
-            try:
-                shape = ifcopenshell.geom.create_shape(settings, product)
-                out[product.GlobalId] = footprint(shape)
-            except Exception as e:  # noqa: BLE001 - any failure is "no shape"
-                out[product.GlobalId] = {"error": str(e) or type(e).__name__}
+    products = [p for cls in classes for p in f.by_type(cls) if p.Representation is not None]
+    out = {p.GlobalId: {"error": "IfcOpenShell produced no shape"} for p in products}
+    if products:
+        # The iterator shares work between products with the same (mapped) representation.
+        it = ifcopenshell.geom.iterator(settings, f, 1, include=products)
+        if it.initialize():
+            while True:
+                shape = it.get()
+                out[shape.guid] = footprint(shape)
+                if not it.next():
+                    break
     json.dump(out, sys.stdout)
 
 

@@ -162,7 +162,7 @@ pub fn classify(model: &Model, rules: &RuleSet, profile: &RobotProfile) -> Class
     let mut elements: Vec<Classified> = candidates
         .par_iter()
         .filter_map(|&e| {
-            let facts = ctx.facts(e);
+            let facts = ctx.facts_with(e, rules.needs_properties(&e));
             let rule = rules.winner(&e, &facts, profile)?;
             if rule.skip {
                 return None;

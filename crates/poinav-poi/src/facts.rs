@@ -15,6 +15,8 @@ pub const MEASURES: &[&str] = &[
     "clear_height_m",
     "area_m2",
     "elongation",
+    "footprint_width_m",
+    "footprint_length_m",
     "door_count",
     "slope_deg",
     "is_external",
@@ -73,6 +75,10 @@ pub struct Facts {
     pub area_m2: Option<f64>,
     /// Long side / short side of the footprint's minimum bounding rectangle.
     pub elongation: Option<f64>,
+    /// Short side of the footprint's minimum bounding rectangle, metres.
+    pub footprint_width_m: Option<f64>,
+    /// Long side of the footprint's minimum bounding rectangle, metres.
+    pub footprint_length_m: Option<f64>,
     /// Number of distinct doors on the boundary of a space.
     pub door_count: Option<f64>,
     /// Slope in degrees (ramps).
@@ -95,6 +101,8 @@ impl Facts {
             "clear_height_m" => self.clear_height_m,
             "area_m2" => self.area_m2,
             "elongation" => self.elongation,
+            "footprint_width_m" => self.footprint_width_m,
+            "footprint_length_m" => self.footprint_length_m,
             "door_count" => self.door_count,
             "slope_deg" => self.slope_deg,
             "is_external" => self.is_external.map(|b| if b { 1.0 } else { 0.0 }),
@@ -104,20 +112,38 @@ impl Facts {
     }
 }
 
-/// Model-wide context for computing facts: units and the space/door adjacency.
+/// How far (metres) a door's centre may lie outside a space's footprint and still open into it:
+/// the door sits in the middle of the wall, half a wall's thickness from the room.
+pub const DOOR_REACH_M: f64 = 0.4;
+
+/// Model-wide context for computing facts: units, space footprints and the space/door adjacency.
 #[derive(Debug)]
 pub struct FactContext<'m> {
     model: &'m Model,
     metres: f64,
     square_metres: f64,
     radians: f64,
-    /// Space -> doors on its boundary (from IfcRelSpaceBoundary).
+    /// Space -> doors on its boundary (IfcRelSpaceBoundary, else geometry).
     space_doors: FxHashMap<EntityId, Vec<EntityId>>,
+    /// Where the adjacency came from.
+    doors_from_boundaries: bool,
+    /// Space footprints in world metres.
+    footprints: FxHashMap<EntityId, poinav_geom::Footprint>,
 }
 
 impl<'m> FactContext<'m> {
     /// Prepares units and the space-boundary index of `model`.
     pub fn new(model: &'m Model) -> FactContext<'m> {
+        let mut cache = poinav_geom::PlacementCache::new(model);
+        let footprints: FxHashMap<EntityId, poinav_geom::Footprint> = model
+            .instances_of("IfcSpace")
+            .into_iter()
+            .filter_map(|s| {
+                poinav_geom::footprint_of(&mut cache, s)
+                    .ok()
+                    .map(|f| (s.id(), f.footprint))
+            })
+            .collect();
         let mut space_doors: FxHashMap<EntityId, Vec<EntityId>> = FxHashMap::default();
         for b in model.instances_of("IfcRelSpaceBoundary") {
             let (Some(space), Some(element)) = (
@@ -133,13 +159,43 @@ impl<'m> FactContext<'m> {
                 }
             }
         }
+        let doors_from_boundaries = !space_doors.is_empty();
+        if !doors_from_boundaries && !footprints.is_empty() {
+            // No space boundaries: a door opens into every space its centre is near.
+            for door in model.instances_of("IfcDoor") {
+                let Ok(g) = poinav_geom::door_geometry(&mut cache, door) else {
+                    continue;
+                };
+                let mut ids: Vec<&EntityId> = footprints.keys().collect();
+                ids.sort();
+                for id in ids {
+                    let f = &footprints[id];
+                    let z_overlap = g.center.z >= f.z_min - 0.5 && g.center.z <= f.z_max + 0.5;
+                    if z_overlap && f.distance_to(g.center.truncate()) <= DOOR_REACH_M {
+                        space_doors.entry(*id).or_default().push(door.id());
+                    }
+                }
+            }
+        }
         FactContext {
             model,
             metres: poinav_ifc::units::length_unit(model).metres_per_unit,
             square_metres: poinav_ifc::units::area_scale(model),
             radians: poinav_ifc::units::angle_scale(model),
             space_doors,
+            doors_from_boundaries,
+            footprints,
         }
+    }
+
+    /// True when the space/door adjacency comes from IfcRelSpaceBoundary (else from geometry).
+    pub fn doors_from_space_boundaries(&self) -> bool {
+        self.doors_from_boundaries
+    }
+
+    /// The footprint of a space, in world metres.
+    pub fn footprint(&self, space: EntityId) -> Option<&poinav_geom::Footprint> {
+        self.footprints.get(&space)
     }
 
     /// The model.
@@ -152,18 +208,25 @@ impl<'m> FactContext<'m> {
         self.metres
     }
 
-    /// Doors on the boundary of `space` (IfcRelSpaceBoundary), in file order of the boundaries.
+    /// Doors on the boundary of `space`: from IfcRelSpaceBoundary, else every door whose centre
+    /// is within [`DOOR_REACH_M`] of the space's footprint.
     pub fn doors_of_space(&self, space: EntityId) -> &[EntityId] {
         self.space_doors.get(&space).map_or(&[], Vec::as_slice)
     }
 
-    /// True when the model has space boundaries at all (door counts are meaningful).
-    pub fn has_space_boundaries(&self) -> bool {
-        !self.space_doors.is_empty()
+    /// True when door counts are meaningful: the model has space boundaries, or space footprints.
+    pub fn knows_doors(&self) -> bool {
+        self.doors_from_boundaries || !self.footprints.is_empty()
     }
 
-    /// Computes the facts of `e`.
+    /// Computes the facts of `e`, property values included.
     pub fn facts(&self, e: Entity<'m>) -> Facts {
+        self.facts_with(e, true)
+    }
+
+    /// Computes the facts of `e`; property sets (the costly part) are read only when
+    /// `with_properties` is set (`properties`, `is_external` and `slope_deg` stay empty otherwise).
+    pub fn facts_with(&self, e: Entity<'m>, with_properties: bool) -> Facts {
         let mut f = Facts {
             class: e.type_name().to_string(),
             name: e.name(),
@@ -177,7 +240,12 @@ impl<'m> FactContext<'m> {
         if f.predefined_type.as_deref() == Some("USERDEFINED") {
             f.predefined_type = f.object_type.clone().or(f.predefined_type);
         }
-        for set in property::property_sets(e) {
+        let sets = if with_properties {
+            property::property_sets(e)
+        } else {
+            Vec::new()
+        };
+        for set in sets {
             for p in set.properties {
                 if let Some(v) = fact_value(&p.value) {
                     f.properties.insert(format!("{}.{}", set.name, p.name), v);
@@ -207,8 +275,15 @@ impl<'m> FactContext<'m> {
             }
         }
         if e.is_a("IfcSpace") {
-            f.area_m2 = space_area(e).map(|a| a * self.square_metres);
-            if self.has_space_boundaries() {
+            let footprint = self.footprints.get(&e.id());
+            f.area_m2 = space_area(e)
+                .map(|a| a * self.square_metres)
+                .or_else(|| footprint.map(|p| p.area()));
+            f.elongation = footprint.map(|p| p.elongation()).filter(|e| e.is_finite());
+            let rect = footprint.and_then(|p| p.min_area_rectangle());
+            f.footprint_width_m = rect.as_ref().map(|r| r.width);
+            f.footprint_length_m = rect.as_ref().map(|r| r.length);
+            if self.doors_from_boundaries || footprint.is_some() {
                 f.door_count = Some(self.doors_of_space(e.id()).len() as f64);
             }
         }

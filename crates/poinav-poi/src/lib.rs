@@ -22,6 +22,7 @@ mod error;
 mod facts;
 mod profile;
 mod rules;
+pub mod runtime;
 mod taxonomy;
 mod timestamp;
 mod write;

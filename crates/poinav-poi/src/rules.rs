@@ -325,6 +325,21 @@ impl RuleSet {
         c
     }
 
+    /// True when a rule that may apply to `e` tests property values (directly, or through the
+    /// `is_external` and `slope_deg` measures, which come from property sets).
+    pub fn needs_properties(&self, e: &poinav_ifc::Entity<'_>) -> bool {
+        let from_psets = |c: &Condition| {
+            [&c.lhs, &c.rhs].iter().any(|o| matches!(o, crate::condition::Operand::Measure(m) if m == "is_external" || m == "slope_deg"))
+        };
+        self.rules.iter().any(|r| {
+            r.classes.iter().any(|c| e.is_a(c))
+                && (!r.properties.is_empty()
+                    || r.accessibility == AccessibilityKind::Slope
+                    || r.when.iter().chain(&r.when_any).any(from_psets)
+                    || r.conditional.iter().any(|c| from_psets(&c.when)))
+        })
+    }
+
     /// The winning rule for `e`: highest priority, then the last defined.
     pub fn winner(
         &self,
@@ -395,10 +410,12 @@ fn compile(r: RawRule, origin: &str) -> Result<Rule, PoiError> {
                 p.name.clone(),
                 Regex::new(re).map_err(|e| err(format!("bad pattern `{re}`: {e}")))?,
             ),
-            _ => return Err(err(format!(
+            _ => {
+                return Err(err(format!(
                 "property `{}` needs exactly one of `equals` (bool, number or text) or `matches`",
                 p.name
-            ))),
+            )))
+            }
         };
         properties.push(test);
     }

@@ -1,0 +1,134 @@
+//! `GeomError`: why the geometry of one instance could not be read; always names its `#id`.
+
+use poinav_ifc::EntityId;
+
+/// Why a placement, profile, curve or representation could not be turned into geometry.
+///
+/// Every variant carries the `#id` of the instance at fault, so a damaged part of a model is
+/// reported for that part only; the rest of the model is still read.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum GeomError {
+    /// A required attribute is `$`, missing, unreadable or a dangling reference.
+    #[error("{id}: {class} has no usable `{attribute}`")]
+    Missing {
+        /// The instance whose attribute is missing.
+        id: EntityId,
+        /// Its class.
+        class: String,
+        /// The attribute (schema spelling).
+        attribute: &'static str,
+    },
+    /// An attribute refers to an instance of a class that cannot stand there.
+    #[error("{id}: `{attribute}` refers to {found_id}={found}, expected {expected}")]
+    WrongType {
+        /// The referring instance.
+        id: EntityId,
+        /// The attribute (schema spelling).
+        attribute: &'static str,
+        /// The instance referred to.
+        found_id: EntityId,
+        /// Its class.
+        found: String,
+        /// What the attribute should hold.
+        expected: &'static str,
+    },
+    /// A kind of geometry this crate does not (yet) evaluate.
+    #[error("{id}: {class} is not supported ({what})")]
+    Unsupported {
+        /// The instance.
+        id: EntityId,
+        /// Its class.
+        class: String,
+        /// What it was needed for.
+        what: &'static str,
+    },
+    /// An `IfcGridPlacement` (placement on a design grid), which is not evaluated; callers
+    /// that need a transform anyway may use the identity.
+    #[error("{id}: IfcGridPlacement is not supported; the identity would be an approximation")]
+    GridPlacement {
+        /// The grid placement.
+        id: EntityId,
+    },
+    /// A placement chain that loops back on itself or is deeper than [`crate::placement::MAX_DEPTH`].
+    #[error("{id}: placement chain is cyclic or deeper than {depth} levels")]
+    PlacementChain {
+        /// The placement where the walk gave up.
+        id: EntityId,
+        /// The depth limit.
+        depth: usize,
+    },
+    /// Numbers that do not make geometry: a zero direction, a polygon with no area, NaN.
+    #[error("{id}: degenerate geometry: {reason}")]
+    Degenerate {
+        /// The instance.
+        id: EntityId,
+        /// What is wrong.
+        reason: &'static str,
+    },
+    /// A product without a representation from which a footprint can be made.
+    #[error("{id}: {class} has no shape representation with geometry")]
+    NoGeometry {
+        /// The product (or representation) instance.
+        id: EntityId,
+        /// Its class.
+        class: String,
+    },
+}
+
+impl GeomError {
+    /// The `#id` of the instance the error is about.
+    pub fn id(&self) -> EntityId {
+        match self {
+            GeomError::Missing { id, .. }
+            | GeomError::WrongType { id, .. }
+            | GeomError::Unsupported { id, .. }
+            | GeomError::GridPlacement { id }
+            | GeomError::PlacementChain { id, .. }
+            | GeomError::Degenerate { id, .. }
+            | GeomError::NoGeometry { id, .. } => *id,
+        }
+    }
+}
+
+/// Shorthand for [`GeomError::Missing`] on entity `e`.
+pub(crate) fn missing(e: &poinav_ifc::Entity<'_>, attribute: &'static str) -> GeomError {
+    GeomError::Missing {
+        id: e.id(),
+        class: e.type_name().to_string(),
+        attribute,
+    }
+}
+
+/// Shorthand for [`GeomError::Unsupported`] on entity `e`.
+pub(crate) fn unsupported(e: &poinav_ifc::Entity<'_>, what: &'static str) -> GeomError {
+    GeomError::Unsupported {
+        id: e.id(),
+        class: e.type_name().to_string(),
+        what,
+    }
+}
+
+/// Shorthand for [`GeomError::Degenerate`] on entity `e`.
+pub(crate) fn degenerate(e: &poinav_ifc::Entity<'_>, reason: &'static str) -> GeomError {
+    GeomError::Degenerate { id: e.id(), reason }
+}
+
+/// The instance `e.attribute` refers to, which must be of class `expected` (or a subtype).
+pub(crate) fn required_ref<'m>(
+    e: &poinav_ifc::Entity<'m>,
+    attribute: &'static str,
+    expected: &'static str,
+) -> Result<poinav_ifc::Entity<'m>, GeomError> {
+    let target = e.get_ref(attribute).ok_or_else(|| missing(e, attribute))?;
+    if target.is_a(expected) {
+        Ok(target)
+    } else {
+        Err(GeomError::WrongType {
+            id: e.id(),
+            attribute,
+            found_id: target.id(),
+            found: target.type_name().to_string(),
+            expected,
+        })
+    }
+}

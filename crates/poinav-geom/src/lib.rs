@@ -1,0 +1,54 @@
+//! Geometry of IFC products for robots, read with [`poinav_ifc`]: world placements
+//! ([`placement`]), profiles ([`profile`]), footprints of spaces and other products
+//! ([`footprint`]) and door frames ([`door`]). All lengths are metres, all numbers `f64`;
+//! a part of a model that cannot be read gives a [`GeomError`] naming its `#id`, for that
+//! part only.
+//!
+//! ```
+//! use poinav_geom::{footprint_of, PlacementCache};
+//! use poinav_ifc::Model;
+//!
+//! // A 4 m x 3 m room, 2.5 m high, placed at (10 m, 20 m) in a millimetre model.
+//! let text = "ISO-10303-21;HEADER;FILE_SCHEMA(('IFC4'));ENDSEC;DATA;\n\
+//!     #1=IFCPROJECT('0YvctVUKr0kugbFTf53O9L',$,'P',$,$,$,$,$,#2);\n\
+//!     #2=IFCUNITASSIGNMENT((#3));#3=IFCSIUNIT(*,.LENGTHUNIT.,.MILLI.,.METRE.);\n\
+//!     #10=IFCCARTESIANPOINT((10000.,20000.,0.));#11=IFCAXIS2PLACEMENT3D(#10,$,$);\n\
+//!     #12=IFCLOCALPLACEMENT($,#11);\n\
+//!     #20=IFCRECTANGLEPROFILEDEF(.AREA.,$,$,4000.,3000.);#21=IFCDIRECTION((0.,0.,1.));\n\
+//!     #22=IFCCARTESIANPOINT((0.,0.,0.));#23=IFCAXIS2PLACEMENT3D(#22,$,$);\n\
+//!     #24=IFCEXTRUDEDAREASOLID(#20,#23,#21,2500.);\n\
+//!     #25=IFCSHAPEREPRESENTATION($,'Body','SweptSolid',(#24));\n\
+//!     #26=IFCPRODUCTDEFINITIONSHAPE($,$,(#25));\n\
+//!     #30=IFCSPACE('1YvctVUKr0kugbFTf53O9L',$,'101',$,$,#12,#26,$,.ELEMENT.,$,$);\n\
+//!     ENDSEC;END-ISO-10303-21;";
+//! let model = Model::from_bytes("room.ifc", text.as_bytes().to_vec()).unwrap();
+//! let mut cache = PlacementCache::new(&model);
+//! let space = model.instances_of("IfcSpace")[0];
+//! assert_eq!(cache.product(space).unwrap().translation.x, 10.0);
+//! let f = footprint_of(&mut cache, space).unwrap().footprint;
+//! assert!((f.area() - 12.0).abs() < 1e-9);
+//! assert_eq!((f.z_min, f.z_max), (0.0, 2.5));
+//! assert!(f.contains(glam::DVec2::new(11.9, 21.4)));
+//! assert!((f.elongation() - 4.0 / 3.0).abs() < 1e-9);
+//! ```
+
+mod axis2_placement;
+pub mod cartesian_point;
+pub mod cartesian_transformation_operator;
+pub mod curve;
+pub mod direction;
+pub mod door;
+mod error;
+pub mod footprint;
+pub mod placement;
+pub mod polygon;
+pub mod profile;
+pub mod representation;
+mod unit_assignment;
+
+pub use door::{door_geometry, DoorGeometry};
+pub use error::GeomError;
+pub use footprint::{footprint_of, Footprint, FootprintMethod, ProductFootprint};
+pub use placement::{axis2placement_3d, PlacementCache};
+pub use representation::Approximation;
+pub use unit_assignment::{plane_angle_unit, Units};

@@ -1,0 +1,298 @@
+//! Plane polygons (`&[DVec2]`, implicitly closed): area, orientation, convex hull, minimum-area
+//! bounding rectangle by rotating calipers, point containment and distance.
+
+use glam::DVec2;
+
+/// Signed area: positive for counter-clockwise polygons.
+pub fn signed_area(poly: &[DVec2]) -> f64 {
+    let n = poly.len();
+    if n < 3 {
+        return 0.0;
+    }
+    // Shift to the first point so large world coordinates lose no precision.
+    let o = poly[0];
+    (0..n)
+        .map(|i| (poly[i] - o).perp_dot(poly[(i + 1) % n] - o))
+        .sum::<f64>()
+        / 2.0
+}
+
+/// The smallest axis-aligned box around the points, as (min, max).
+pub fn bounds(points: &[DVec2]) -> (DVec2, DVec2) {
+    points.iter().fold(
+        (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
+        |(lo, hi), &p| (lo.min(p), hi.max(p)),
+    )
+}
+
+/// Drops repeated points (the closing one too) and makes the polygon counter-clockwise;
+/// `None` when fewer than three points remain, a point is not finite, or it has no area.
+pub fn clean(points: Vec<DVec2>) -> Option<Vec<DVec2>> {
+    if points.iter().any(|p| !p.is_finite()) {
+        return None;
+    }
+    let (lo, hi) = bounds(&points);
+    let eps = 1e-9 * (hi - lo).max_element().max(1e-300);
+    let mut out: Vec<DVec2> = Vec::with_capacity(points.len());
+    for p in points {
+        if out.last().is_none_or(|q| q.distance(p) > eps) {
+            out.push(p);
+        }
+    }
+    while out.len() > 1 && out[0].distance(*out.last().expect("non-empty")) <= eps {
+        out.pop();
+    }
+    if out.len() < 3 {
+        return None;
+    }
+    let a = signed_area(&out);
+    let extent = (hi - lo).max_element();
+    if a.abs() <= 1e-12 * extent * extent {
+        return None;
+    }
+    if a < 0.0 {
+        out.reverse();
+    }
+    Some(out)
+}
+
+/// The convex hull, counter-clockwise, without collinear points (Andrew's monotone chain).
+/// Fewer than three distinct points give those points.
+pub fn convex_hull(points: &[DVec2]) -> Vec<DVec2> {
+    let mut pts: Vec<DVec2> = points.iter().copied().filter(|p| p.is_finite()).collect();
+    pts.sort_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
+    pts.dedup();
+    if pts.len() < 3 {
+        return pts;
+    }
+    let cross = |o: DVec2, a: DVec2, b: DVec2| (a - o).perp_dot(b - o);
+    let mut hull: Vec<DVec2> = Vec::with_capacity(2 * pts.len());
+    for pass in 0..2 {
+        let start = hull.len();
+        let iter: Box<dyn Iterator<Item = &DVec2>> = if pass == 0 {
+            Box::new(pts.iter())
+        } else {
+            Box::new(pts.iter().rev())
+        };
+        for &p in iter {
+            while hull.len() >= start + 2
+                && cross(hull[hull.len() - 2], hull[hull.len() - 1], p) <= 0.0
+            {
+                hull.pop();
+            }
+            hull.push(p);
+        }
+        hull.pop();
+    }
+    hull
+}
+
+/// A rectangle in the plane: centre, unit direction of its first side, and side lengths.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Rectangle {
+    /// Its centre.
+    pub center: DVec2,
+    /// Unit vector along the side of length `length`.
+    pub direction: DVec2,
+    /// The side along `direction` (the longer one).
+    pub length: f64,
+    /// The other side (the shorter one).
+    pub width: f64,
+}
+
+impl Rectangle {
+    /// length x width.
+    pub fn area(&self) -> f64 {
+        self.length * self.width
+    }
+}
+
+/// The minimum-area rectangle enclosing `points`, by rotating calipers over the edges of their
+/// convex hull (one side of the optimum lies on a hull edge). `None` for fewer than two
+/// distinct points; collinear points give a rectangle of width 0.
+pub fn min_area_rectangle(points: &[DVec2]) -> Option<Rectangle> {
+    let hull = convex_hull(points);
+    if hull.len() < 2 {
+        return None;
+    }
+    let mut best: Option<(f64, Rectangle)> = None;
+    let n = hull.len();
+    for i in 0..n {
+        let Some(u) = (hull[(i + 1) % n] - hull[i]).try_normalize() else {
+            continue;
+        };
+        let v = u.perp();
+        let (mut lo, mut hi) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
+        for &p in &hull {
+            let q = DVec2::new(p.dot(u), p.dot(v));
+            lo = lo.min(q);
+            hi = hi.max(q);
+        }
+        let size = hi - lo;
+        let area = size.x * size.y;
+        if best.as_ref().is_none_or(|(a, _)| area < *a) {
+            let mid = (lo + hi) / 2.0;
+            let center = u * mid.x + v * mid.y;
+            let rect = if size.x >= size.y {
+                Rectangle {
+                    center,
+                    direction: u,
+                    length: size.x,
+                    width: size.y,
+                }
+            } else {
+                Rectangle {
+                    center,
+                    direction: v,
+                    length: size.y,
+                    width: size.x,
+                }
+            };
+            best = Some((area, rect));
+        }
+    }
+    best.map(|(_, r)| r)
+}
+
+/// True when `p` is inside the polygon or on its boundary (even-odd rule).
+pub fn contains(poly: &[DVec2], p: DVec2) -> bool {
+    let n = poly.len();
+    if n < 3 {
+        return false;
+    }
+    if distance_to_boundary(poly, p) <= 1e-12 * p.length().max(1.0) {
+        return true;
+    }
+    let mut inside = false;
+    for i in 0..n {
+        let (a, b) = (poly[i], poly[(i + 1) % n]);
+        if (a.y > p.y) != (b.y > p.y) {
+            let x = a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x);
+            if p.x < x {
+                inside = !inside;
+            }
+        }
+    }
+    inside
+}
+
+/// Distance from `p` to the nearest edge of the polygon.
+pub fn distance_to_boundary(poly: &[DVec2], p: DVec2) -> f64 {
+    let n = poly.len();
+    if n == 0 {
+        return f64::INFINITY;
+    }
+    (0..n)
+        .map(|i| segment_distance(poly[i], poly[(i + 1) % n], p))
+        .fold(f64::INFINITY, f64::min)
+}
+
+fn segment_distance(a: DVec2, b: DVec2, p: DVec2) -> f64 {
+    let ab = b - a;
+    let len2 = ab.length_squared();
+    let t = if len2 > 0.0 {
+        ((p - a).dot(ab) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    p.distance(a + ab * t)
+}
+
+/// The area centroid (the mean of the vertices when the polygon has no area).
+pub fn centroid(poly: &[DVec2]) -> DVec2 {
+    let n = poly.len();
+    if n == 0 {
+        return DVec2::ZERO;
+    }
+    let o = poly[0];
+    let (mut a, mut c) = (0.0, DVec2::ZERO);
+    for i in 0..n {
+        let (p, q) = (poly[i] - o, poly[(i + 1) % n] - o);
+        let w = p.perp_dot(q);
+        a += w;
+        c += (p + q) * w;
+    }
+    let (lo, hi) = bounds(poly);
+    let extent = (hi - lo).max_element();
+    if a.abs() <= 1e-12 * extent * extent {
+        return poly.iter().copied().sum::<DVec2>() / n as f64;
+    }
+    o + c / (3.0 * a)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    fn rotated_rectangle(l: f64, w: f64, angle_deg: f64, at: DVec2) -> Vec<DVec2> {
+        let r = DVec2::from_angle(angle_deg.to_radians());
+        [(-l, -w), (l, -w), (l, w), (-l, w)]
+            .iter()
+            .map(|&(x, y)| at + r.rotate(DVec2::new(x / 2.0, y / 2.0)))
+            .collect()
+    }
+
+    #[test]
+    fn rotating_calipers_on_a_rotated_10_by_2_rectangle() {
+        let rect = rotated_rectangle(10.0, 2.0, 30.0, DVec2::new(3.0, -7.0));
+        let r = min_area_rectangle(&rect).unwrap();
+        assert!((r.length / r.width - 5.0).abs() < 1e-9);
+        assert!((r.area() - 20.0).abs() < 1e-9);
+        assert!((r.center - DVec2::new(3.0, -7.0)).length() < 1e-9);
+        assert!(r.direction.dot(DVec2::from_angle(30f64.to_radians())).abs() > 1.0 - 1e-12);
+    }
+
+    #[test]
+    fn point_in_polygon_for_an_l_shape() {
+        let l = [
+            DVec2::new(0.0, 0.0),
+            DVec2::new(4.0, 0.0),
+            DVec2::new(4.0, 1.0),
+            DVec2::new(1.0, 1.0),
+            DVec2::new(1.0, 3.0),
+            DVec2::new(0.0, 3.0),
+        ];
+        assert!(contains(&l, DVec2::new(0.5, 2.5)));
+        assert!(contains(&l, DVec2::new(3.5, 0.5)));
+        assert!(!contains(&l, DVec2::new(2.0, 2.0)), "in the notch");
+        assert!(contains(&l, DVec2::new(4.0, 0.5)), "on the boundary");
+        assert!(!contains(&l, DVec2::new(-0.1, 0.5)));
+        assert!((distance_to_boundary(&l, DVec2::new(2.0, 2.0)) - 1.0).abs() < 1e-12);
+        assert_eq!(signed_area(&l), 6.0);
+        let c = centroid(&l);
+        assert!(contains(&l, c));
+    }
+
+    #[test]
+    fn hull_drops_interior_and_collinear_points() {
+        let pts = [
+            DVec2::new(0.0, 0.0),
+            DVec2::new(1.0, 0.0),
+            DVec2::new(2.0, 0.0),
+            DVec2::new(2.0, 2.0),
+            DVec2::new(1.0, 1.0),
+            DVec2::new(0.0, 2.0),
+            DVec2::new(0.0, 2.0),
+        ];
+        let h = convex_hull(&pts);
+        assert_eq!(h.len(), 4);
+        assert_eq!(signed_area(&h), 4.0);
+    }
+
+    proptest! {
+        #[test]
+        fn calipers_find_any_rectangle(
+            l in 0.1f64..100.0, w in 0.1f64..100.0, angle in 0.0f64..360.0,
+            x in -1e4f64..1e4, y in -1e4f64..1e4,
+        ) {
+            let rect = rotated_rectangle(l, w, angle, DVec2::new(x, y));
+            let r = min_area_rectangle(&rect).unwrap();
+            prop_assert!((r.area() - l * w).abs() <= 1e-6 * l * w);
+            prop_assert!((r.length - l.max(w)).abs() <= 1e-6 * l.max(w));
+            let hull = convex_hull(&rect);
+            prop_assert!((signed_area(&hull) - l * w).abs() <= 1e-6 * l * w);
+            prop_assert!(contains(&rect, DVec2::new(x, y)));
+        }
+    }
+}
