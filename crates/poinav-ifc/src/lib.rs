@@ -32,6 +32,7 @@ mod scan;
 pub mod schema;
 pub mod spatial;
 pub mod string;
+pub mod timestamp;
 pub mod units;
 pub mod value;
 

@@ -309,6 +309,21 @@ impl Model {
         counts
     }
 
+    /// Every instance whose arguments refer to `id` (a scan of the whole file: for edits, not
+    /// for hot paths).
+    pub fn referrers(&self, id: EntityId) -> Vec<Entity<'_>> {
+        let needle = format!("#{}", id.0);
+        let finder = memchr::memmem::Finder::new(needle.as_bytes());
+        self.entities()
+            .filter(|e| {
+                let args = e.raw_args();
+                finder
+                    .find_iter(args)
+                    .any(|at| !args.get(at + needle.len()).is_some_and(u8::is_ascii_digit))
+            })
+            .collect()
+    }
+
     /// 1-based line of a byte offset.
     pub(crate) fn line_at(&self, offset: usize) -> usize {
         self.lines

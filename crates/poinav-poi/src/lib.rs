@@ -24,19 +24,18 @@ mod profile;
 mod rules;
 pub mod runtime;
 mod taxonomy;
-mod timestamp;
 mod write;
 
 pub use classify::{classify, Accessibility, Classification, Classified};
 pub use condition::{Condition, Op, Operand};
 pub use error::PoiError;
 pub use facts::{FactContext, FactValue, Facts, MEASURES};
+pub use poinav_ifc::timestamp::{iso8601_utc, now_or_source_date_epoch};
 pub use profile::{Locomotion, RobotProfile};
 pub use rules::{AccessibilityKind, ConditionalRole, Coordination, PropertyTest, Rule, RuleSet};
 pub use taxonomy::{
     AccessibilityStatus, AppliesTo, Category, CoordinationProtocol, PoiType, Role, ValidationMethod,
 };
-pub use timestamp::{iso8601_utc, now_or_source_date_epoch};
 pub use write::{
     previous_enrichment, pset_names, stored_length, write_enrichment, PsetNames, WriteOptions,
     POINAV_MARKER,

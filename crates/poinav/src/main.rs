@@ -1,5 +1,6 @@
 //! The `poinav` command line: make building models (IFC) robot-ready.
 
+mod author;
 mod enrich;
 mod inspect;
 
@@ -21,6 +22,11 @@ enum Command {
     Inspect(inspect::Args),
     /// Add robot POI semantics (three property sets) to a copy of an IFC file; write CSV and IDS.
     Enrich(enrich::Args),
+    /// Write the paper's test building (IFC4X3_ADD2): a corridor with rooms on both sides.
+    DemoBuilding(author::DemoBuildingArgs),
+    /// Change a model for design iteration, losslessly otherwise.
+    #[command(subcommand)]
+    Patch(author::Patch),
 }
 
 /// Exit code for unreadable input, or diagnostics under `--strict`.
@@ -31,6 +37,8 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Inspect(args) => inspect::run(&args),
         Command::Enrich(args) => enrich::run(&args),
+        Command::DemoBuilding(args) => author::demo_building(&args),
+        Command::Patch(author::Patch::DoorWidth(args)) => author::door_width(&args),
     };
     match result {
         Ok(code) => code,
