@@ -504,3 +504,21 @@ fn r3_geometric_facts_come_from_space_footprints_and_door_positions() {
         "its doors are 1.0 m wide"
     );
 }
+
+#[test]
+fn r2_clear_width_falls_back_to_the_opening_geometry() {
+    // A door without OverallWidth in a 0.85 m wide opening (a box 0.85 x 0.3 x 2.1 m).
+    let text = "#10=IFCCARTESIANPOINT((0.,0.,0.));#11=IFCAXIS2PLACEMENT3D(#10,$,$);#12=IFCLOCALPLACEMENT($,#11);\
+        #13=IFCCARTESIANPOINT((0.,0.));#14=IFCAXIS2PLACEMENT2D(#13,$);#15=IFCRECTANGLEPROFILEDEF(.AREA.,$,#14,0.85,0.3);\
+        #16=IFCDIRECTION((0.,0.,1.));#17=IFCEXTRUDEDAREASOLID(#15,#11,#16,2.1);\
+        #18=IFCGEOMETRICREPRESENTATIONCONTEXT($,'Model',3,1.E-5,#11,$);\
+        #19=IFCSHAPEREPRESENTATION(#18,'Body','SweptSolid',(#17));#20=IFCPRODUCTDEFINITIONSHAPE($,$,(#19));\
+        #30=IFCOPENINGELEMENT('0000000000000000000030',$,'O',$,$,#12,#20,$,.OPENING.);\
+        #31=IFCRELFILLSELEMENT('0000000000000000000031',$,$,$,#30,#100);\
+        #100=IFCDOOR('0000000000000000000100',$,'D',$,$,#12,$,$,$,$,.DOOR.,$,$);";
+    let c = run(text);
+    let door = c.elements.iter().find(|e| e.class == "IfcDoor").unwrap();
+    assert_eq!(door.facts.clear_width_source, Some("opening geometry"));
+    assert!((door.facts.clear_width_m.unwrap() - 0.85).abs() < 1e-9);
+    assert_eq!(door.accessibility.as_ref().unwrap().status, S::Restricted);
+}
