@@ -73,10 +73,10 @@ def time_poinav(binary, path, out_ifc, out_csv, env):
 def read_rows(csv_path):
     """The CSV as plain Python values: lengths as float, counts as int, roles as lists."""
     num = lambda s: float(s) if s else None  # noqa: E731
+    roles = lambda s: [x for x in s.split(";") if x]  # noqa: E731
     rows = []
     with open(csv_path, newline="", encoding="utf-8") as fh:
         for r in csv.DictReader(fh):
-            roles = lambda s: [x for x in s.split(";") if x]  # noqa: E731
             row = {
                 "guid": r["GlobalId"],
                 "category": r["POI_Category"],
