@@ -1,0 +1,109 @@
+//! `Floor`: one storey as plain 2D data (metres, world XY) tagged with GlobalIds, classes and
+//! POI roles. Navigation and simulation read this, never IFC.
+
+use glam::DVec2;
+use poinav_poi::{AccessibilityStatus, CoordinationProtocol, Role};
+use serde::{Deserialize, Serialize};
+
+/// What an obstacle is, for maps and sensors.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ObstacleKind {
+    /// Walls, columns, railings: always solid.
+    Structure,
+    /// Furniture and equipment: solid, or unknown in maps by option.
+    Furniture,
+    /// A door leaf or frame: solid, or a passage when the door is open.
+    DoorLeaf,
+    /// Stairs and ramps drawn as obstacles for profiles that cannot use them.
+    Transition,
+}
+
+/// Something a robot cannot pass through.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct FloorObstacle {
+    /// GlobalId of the IFC element (or a made-up id for hand-built floors).
+    pub id: String,
+    /// IFC class.
+    pub class: String,
+    /// Kind.
+    pub kind: ObstacleKind,
+    /// Outline rings, counter-clockwise, world metres (several for split elements).
+    pub rings: Vec<Vec<DVec2>>,
+    /// POI roles (primary and conditional).
+    pub roles: Vec<Role>,
+}
+
+/// A passage between zones.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct FloorDoor {
+    /// GlobalId.
+    pub id: String,
+    /// Name.
+    pub name: Option<String>,
+    /// The passage region (the opening's footprint), world metres.
+    pub ring: Vec<DVec2>,
+    /// Centre of the passage.
+    pub center: DVec2,
+    /// Clear width in metres.
+    pub clear_width_m: f64,
+    /// AccessibilityStatus for the profile the floor was built for.
+    pub status: AccessibilityStatus,
+    /// Required clear width of that profile (MinClearanceWidth).
+    pub min_clearance_width_m: f64,
+    /// POI roles (A-2, and B-2 when narrow).
+    pub roles: Vec<Role>,
+}
+
+/// A space (room, corridor) as a region.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct FloorZone {
+    /// GlobalId.
+    pub id: String,
+    /// Name.
+    pub name: Option<String>,
+    /// LongName.
+    pub long_name: Option<String>,
+    /// Outline, counter-clockwise, world metres.
+    pub ring: Vec<DVec2>,
+    /// POI roles (Destination, A-3 + C-1 for corridors, B-1 for hazards).
+    pub roles: Vec<Role>,
+    /// MinInterRobotSeparation and CoordinationProtocol of a C-1 zone.
+    pub coordination: Option<(f64, CoordinationProtocol)>,
+}
+
+/// One storey for navigation and simulation.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+pub struct Floor {
+    /// Storey name.
+    pub name: String,
+    /// Storey elevation in metres.
+    pub elevation_m: f64,
+    /// Obstacles.
+    pub obstacles: Vec<FloorObstacle>,
+    /// Doors.
+    pub doors: Vec<FloorDoor>,
+    /// Spaces.
+    pub zones: Vec<FloorZone>,
+}
+
+impl Floor {
+    /// Bounding box of everything on the floor (min, max); `None` when empty.
+    pub fn bounds(&self) -> Option<(DVec2, DVec2)> {
+        let points = self
+            .obstacles
+            .iter()
+            .flat_map(|o| o.rings.iter().flatten())
+            .chain(self.zones.iter().flat_map(|z| z.ring.iter()))
+            .chain(self.doors.iter().flat_map(|d| d.ring.iter()));
+        points.fold(None, |acc, p| match acc {
+            None => Some((*p, *p)),
+            Some((lo, hi)) => Some((lo.min(*p), hi.max(*p))),
+        })
+    }
+
+    /// The zone with this name (Name or LongName).
+    pub fn zone(&self, name: &str) -> Option<&FloorZone> {
+        self.zones.iter().find(|z| z.name.as_deref() == Some(name) || z.long_name.as_deref() == Some(name))
+    }
+}
