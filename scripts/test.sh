@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
-# The test command: installs what the tests need (IfcOpenShell in .venv), then runs the
-# formatting and lint gates, the generated-code freshness check and every test.
+# The test command: installs what the tests need (IfcOpenShell in .venv; the glTF validator
+# from npm and assimp from Debian), then runs the formatting and lint gates, the
+# generated-code freshness check, every test, and each fuzz target for a short bounded time
+# (POINAV_FUZZ_SECONDS per target, default 15; 0 skips fuzzing).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
@@ -12,7 +14,13 @@ fi
 
 bash scripts/setup-python.sh
 export POINAV_PYTHON="$root/.venv/bin/python"
+bash tests/js/setup.sh
 
 cargo fmt --all --check
 cargo clippy --workspace --all-targets --locked -- -D warnings
 cargo test --workspace --locked
+
+fuzz_seconds="${POINAV_FUZZ_SECONDS:-15}"
+if [[ $fuzz_seconds != 0 ]]; then
+    bash scripts/fuzz.sh "$fuzz_seconds"
+fi

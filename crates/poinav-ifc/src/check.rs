@@ -15,6 +15,7 @@ struct Shape {
     attrs: usize,
     balanced: bool,
     max_depth: usize,
+    max_ref: u64,
     dangling: Vec<u64>,
 }
 
@@ -22,6 +23,7 @@ struct Shape {
 fn shape(args: &[u8], exists: impl Fn(u64) -> bool) -> Shape {
     let mut depth = 0usize;
     let mut max_depth = 0usize;
+    let mut max_ref = 0u64;
     let mut commas = 0;
     let mut saw_value = false;
     let mut dangling = Vec::new();
@@ -82,6 +84,9 @@ fn shape(args: &[u8], exists: impl Fn(u64) -> bool) -> Shape {
                 let id = std::str::from_utf8(&args[s..j])
                     .ok()
                     .and_then(|t| t.parse::<u64>().ok());
+                if let Some(id) = id {
+                    max_ref = max_ref.max(id);
+                }
                 match id {
                     Some(id) if exists(id) => {}
                     Some(id) => dangling.push(id),
@@ -108,22 +113,27 @@ fn shape(args: &[u8], exists: impl Fn(u64) -> bool) -> Shape {
         attrs: if saw_value { commas + 1 } else { 0 },
         balanced,
         max_depth,
+        max_ref,
         dangling,
     }
 }
 
-/// Dangling references, wrong attribute counts and unbalanced argument lists, checked in parallel.
-pub(crate) fn structure(model: &Model) -> Vec<Problem> {
+/// Dangling references, wrong attribute counts and unbalanced argument lists, checked in
+/// parallel; also returns, per instance, the largest `#id` its arguments mention (new ids must
+/// stay above these, or an edit could make a dangling reference point at a new instance).
+pub(crate) fn structure(model: &Model) -> (Vec<Problem>, Vec<u64>) {
     let schema = model.schema();
     let bytes = model.bytes();
-    model
+    let parts: Vec<(Vec<Problem>, Vec<u64>)> = model
         .instances
         .par_chunks(4096)
-        .flat_map_iter(|chunk| {
+        .map(|chunk| {
             let mut out = Vec::new();
+            let mut max_refs = Vec::with_capacity(chunk.len());
             for inst in chunk {
                 let args = &bytes[inst.args..inst.end - 1];
                 let s = shape(args, |id| model.entity(EntityId(id)).is_some());
+                max_refs.push(s.max_ref);
                 if !s.balanced {
                     out.push((
                         DiagnosticKind::Syntax,
@@ -186,9 +196,16 @@ pub(crate) fn structure(model: &Model) -> Vec<Problem> {
                     ));
                 }
             }
-            out
+            (out, max_refs)
         })
-        .collect()
+        .collect();
+    let mut problems = Vec::new();
+    let mut max_refs = Vec::with_capacity(model.instances.len());
+    for (p, m) in parts {
+        problems.extend(p);
+        max_refs.extend(m);
+    }
+    (problems, max_refs)
 }
 
 /// One diagnostic per instance whose bytes are not valid UTF-8.

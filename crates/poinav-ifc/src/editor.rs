@@ -47,6 +47,10 @@ pub enum EditError {
     },
 }
 
+/// ApplicationIdentifier of the IfcApplication in an owner history the editor creates (IFC2X3
+/// files without one); lets a later run recognise and replace what poinav added.
+pub const OWNER_APPLICATION_ID: &str = "poinav";
+
 /// A property to add with [`Editor::add_property_set`].
 #[derive(Debug, Clone, PartialEq)]
 pub enum NewProperty {
@@ -72,8 +76,9 @@ pub struct Editor<'m> {
 }
 
 impl<'m> Editor<'m> {
-    /// Starts editing `model`. New instances get ids above the largest id that is not removed
-    /// when the first instance is added, so remove before you add: removing what an earlier
+    /// Starts editing `model`. New instances get ids above the largest id that a kept instance
+    /// defines or mentions (so a dangling `#ref` never comes to point at a new instance) when
+    /// the first instance is added, so remove before you add: removing what an earlier
     /// run appended and adding it again then reproduces the same ids (idempotent edits).
     pub fn new(model: &'m Model) -> Editor<'m> {
         Editor {
@@ -116,12 +121,7 @@ impl<'m> Editor<'m> {
         let next = match self.next_id {
             Some(n) => n,
             None => {
-                let max = self
-                    .model
-                    .entities()
-                    .filter(|e| !self.removed.contains(&(e.position() as u32)))
-                    .map(|e| e.id().0)
-                    .max();
+                let max = (0..self.model.len()).filter(|p| !self.removed.contains(&(*p as u32))).map(|p| self.model.max_id_used_at(p)).max();
                 max.unwrap_or(0) + 1
             }
         };
@@ -218,7 +218,8 @@ impl<'m> Editor<'m> {
         let existing = self
             .model
             .instances_of("IfcOwnerHistory")
-            .first()
+            .into_iter()
+            .find(|e| !self.removed.contains(&(e.position() as u32)))
             .map(|e| e.id());
         let h = match existing {
             Some(id) => Some(id),
@@ -256,7 +257,7 @@ impl<'m> Editor<'m> {
                         Arg::Ref(org),
                         Arg::Text(env!("CARGO_PKG_VERSION").into()),
                         Arg::Text("poinav".into()),
-                        Arg::Text("poinav".into()),
+                        Arg::Text(OWNER_APPLICATION_ID.into()),
                     ],
                 )?;
                 let h = self.add(
@@ -485,6 +486,17 @@ mod tests {
         let door = again.entity(EntityId(2)).unwrap();
         let sets = crate::property::property_sets(door);
         assert_eq!(sets[0].name, "Pset_Test");
+    }
+
+    #[test]
+    fn new_ids_never_capture_a_dangling_reference() {
+        // Found by the enrichment fuzz target: #50 is referred to but not defined; a new
+        // instance must not become #50.
+        let text = FILE.replace("#1= IFCWALL('0YvctVUKr0kugbFTf53O9L',#9,", "#1= IFCWALL('0YvctVUKr0kugbFTf53O9L',#50,");
+        let m = Model::from_bytes("x.ifc", text.into()).unwrap();
+        let mut ed = Editor::new(&m);
+        let id = ed.add("IfcOwnerHistory", vec![Arg::Null, Arg::Null, Arg::Null, Arg::Enum("ADDED".into()), Arg::Null, Arg::Null, Arg::Null, Arg::Integer(0)]).unwrap();
+        assert_eq!(id, EntityId(51));
     }
 
     #[test]

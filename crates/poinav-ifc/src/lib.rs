@@ -38,7 +38,7 @@ pub mod value;
 
 pub use arg::{format_real, Arg};
 pub use diagnostic::{Diagnostic, DiagnosticKind};
-pub use editor::{EditError, Editor, NewProperty};
+pub use editor::{EditError, Editor, NewProperty, OWNER_APPLICATION_ID};
 pub use entity::{AttrError, Entity};
 pub use error::{ReadError, ReadErrorKind};
 pub use guid::{GlobalId, GlobalIdError};

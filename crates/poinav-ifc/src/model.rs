@@ -56,6 +56,8 @@ pub struct Model {
     ids: IdIndex,
     diagnostics: Vec<Diagnostic>,
     data_end: usize,
+    /// Per instance, the largest `#id` its arguments mention.
+    max_refs: Vec<u64>,
     lines: OnceLock<LineTable>,
     by_type: OnceLock<Vec<Vec<u32>>>,
     inverses: Mutex<FxHashMap<(TypeId, usize), Arc<InverseIndex>>>,
@@ -134,11 +136,14 @@ impl Model {
             ids,
             diagnostics: Vec::new(),
             data_end: scanned.data_end,
+            max_refs: Vec::new(),
             lines: OnceLock::new(),
             by_type: OnceLock::new(),
             inverses: Mutex::new(FxHashMap::default()),
         };
-        diagnostics.extend(check::structure(&model));
+        let (problems, max_refs) = check::structure(&model);
+        diagnostics.extend(problems);
+        model.max_refs = max_refs;
         diagnostics.extend(check::non_utf8(&model));
         diagnostics.extend(check::cycles(&model));
         model.diagnostics = model.finish_diagnostics(diagnostics);
@@ -224,6 +229,11 @@ impl Model {
     /// The largest `#id` in the file (0 for an empty model).
     pub fn max_id(&self) -> EntityId {
         EntityId(self.instances.iter().map(|i| i.id.0).max().unwrap_or(0))
+    }
+
+    /// The largest `#id` the instance at `position` defines or mentions.
+    pub(crate) fn max_id_used_at(&self, position: usize) -> u64 {
+        self.instances[position].id.0.max(self.max_refs.get(position).copied().unwrap_or(0))
     }
 
     /// The instance `#id`, if it exists.
