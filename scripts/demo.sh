@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
-# The main job end to end: builds poinav in release mode, inspects every model of the corpus
-# and enriches it with robot POI semantics, writing to out/demo/: per model the inspect report
-# (.json), the enriched IFC (.poi.ifc), the semantic CSV (.csv), the IDS (.ids) and the
-# enrichment summary (.enrich.json), plus a summary table.
+# The main job end to end: builds poinav in release mode and runs `poinav demo` (the paper's
+# test building: enrichment, the three validation scenarios, design iteration, GLB, report) into
+# out/demo/; then inspects and enriches every model of the corpus into out/demo/corpus/: per
+# model the inspect report (.json), the enriched IFC (.poi.ifc), the semantic CSV (.csv), the
+# IDS (.ids), the enrichment summary (.enrich.json) and a floor plan of its first storey (.svg),
+# plus a summary table.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
@@ -12,12 +14,17 @@ mkdir -p "$out"
 
 cargo build --release --locked -p poinav
 bin="$root/target/release/poinav"
+"$bin" demo -o "$out"
+out="$out/corpus"
+mkdir -p "$out"
+echo
 
 printf '%-44s %-12s %8s %7s %7s %7s %6s %8s %9s %9s\n' file schema "unit(m)" storeys spaces doors diag enriched corridors restricted | tee "$out/summary.txt"
 for f in "$shared"/ifc/*.ifc; do
     name="$(basename "$f" .ifc)"
     "$bin" inspect "$f" --json > "$out/$name.json"
     "$bin" enrich "$f" -o "$out/$name.poi.ifc" --csv "$out/$name.csv" --ids "$out/$name.ids" --json > "$out/$name.enrich.json"
+    "$bin" plan "$f" -o "$out/$name.svg" > /dev/null 2>&1 || true
     python3 - "$out/$name.json" "$out/$name.enrich.json" "$name" <<'PY' | tee -a "$out/summary.txt"
 import json, sys
 r = json.load(open(sys.argv[1]))
@@ -29,4 +36,4 @@ done
 echo
 "$bin" enrich "$shared/ifc/office-a.ifc" -o "$out/office-a.poi.ifc" | head -12
 echo
-echo "demo: reports written to $out"
+echo "demo: report in ${out%/corpus}/report.html, corpus outputs in $out"

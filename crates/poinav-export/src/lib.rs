@@ -1,7 +1,16 @@
-//! Exporters that read poinav's results: the semantic CSV of an enrichment and its IDS.
+//! Exporters that read poinav's results: the semantic CSV of an enrichment and its IDS,
+//! 3D exports of element meshes as binary glTF ([`glb`]) and binary FBX 7.4 ([`fbx`]), and
+//! storey floor plans as SVG drawings ([`plan_svg`]).
 
+pub mod fbx;
+pub mod glb;
 pub mod ids;
+pub mod palette;
+pub mod plan_svg;
+pub mod scene;
 pub mod semantic_csv;
+
+pub use scene::SceneInput;
 
 /// Why an export failed.
 #[derive(Debug, thiserror::Error)]

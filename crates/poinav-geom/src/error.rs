@@ -65,6 +65,17 @@ pub enum GeomError {
         /// What is wrong.
         reason: &'static str,
     },
+    /// Geometry that was read but left nothing to show: every part was cut away by openings
+    /// or clipping, or the body holds only curves and points.
+    #[error("{id}: {class} has no surface left: {reason}")]
+    Empty {
+        /// The product (or item) instance.
+        id: EntityId,
+        /// Its class.
+        class: String,
+        /// Why nothing is left.
+        reason: &'static str,
+    },
     /// A product without a representation from which a footprint can be made.
     #[error("{id}: {class} has no shape representation with geometry")]
     NoGeometry {
@@ -85,6 +96,7 @@ impl GeomError {
             | GeomError::GridPlacement { id }
             | GeomError::PlacementChain { id, .. }
             | GeomError::Degenerate { id, .. }
+            | GeomError::Empty { id, .. }
             | GeomError::NoGeometry { id, .. } => *id,
         }
     }

@@ -1,8 +1,9 @@
 //! Geometry of IFC products for robots, read with [`poinav_ifc`]: world placements
 //! ([`placement`]), profiles ([`profile`]), footprints of spaces and other products
-//! ([`footprint`]) and door frames ([`door`]). All lengths are metres, all numbers `f64`;
-//! a part of a model that cannot be read gives a [`GeomError`] naming its `#id`, for that
-//! part only.
+//! ([`footprint`]), door frames ([`door`]) and element meshes in world coordinates with
+//! openings cut ([`element_mesh`]: [`mesh_model`], [`mesh_product`]), and storey floor plans
+//! ([`floor_plan`]: [`floor_plans`]). All lengths are metres, all numbers `f64`; a part of a
+//! model that cannot be read gives a [`GeomError`] naming its `#id`, for that part only.
 //!
 //! ```
 //! use poinav_geom::{footprint_of, PlacementCache};
@@ -33,24 +34,45 @@
 //! ```
 
 mod axis2_placement;
+pub mod boolean;
+pub mod brep;
 pub mod cartesian_point;
 pub mod cartesian_transformation_operator;
 pub mod curve;
 pub mod direction;
 pub mod door;
+pub mod door_passage;
+pub mod element_mesh;
 mod error;
+pub mod extrusion;
+pub mod face_set;
+pub mod floor_plan;
 pub mod footprint;
+pub mod half_space;
 pub mod mesh;
+mod parameterized_profile;
 pub mod placement;
+pub mod plan_kind;
 pub mod polygon;
 pub mod profile;
+pub mod region;
 pub mod representation;
+pub mod representation_mesh;
+pub mod section;
+pub mod surface_style;
+pub mod triangulation;
 mod unit_assignment;
 
 pub use door::{door_geometry, DoorGeometry};
+pub use door_passage::{door_passage, DoorPassage};
+pub use element_mesh::{mesh_model, mesh_product, ModelMeshes};
 pub use error::GeomError;
+pub use floor_plan::{
+    floor_plans, floor_plans_with_meshes, FloorPlan, PlanItem, PlanOptions, PlanProblem, PlanSource,
+};
 pub use footprint::{footprint_of, Footprint, FootprintMethod, ProductFootprint};
 pub use mesh::{ElementMesh, Mesh};
 pub use placement::{axis2placement_3d, PlacementCache};
+pub use plan_kind::PlanItemKind;
 pub use representation::Approximation;
 pub use unit_assignment::{plane_angle_unit, Units};

@@ -1,78 +1,150 @@
-//! `IfcProfileDef`: the outer boundary of a profile as a counter-clockwise 2D polygon in
-//! metres, in the profile's own coordinates (its `Position` applied).
+//! `IfcProfileDef`: the area of a profile as polygons with holes in metres, in the profile's
+//! own coordinates (its `Position` applied), and its outer boundary for footprints.
 //!
-//! Supported: `IfcRectangleProfileDef` (and subtypes, whose rounded or hollow parts do not
-//! change the outer rectangle enough to matter here: roundings are ignored),
-//! `IfcCircleProfileDef` (and hollow), `IfcEllipseProfileDef`, and
-//! `IfcArbitraryClosedProfileDef` (and `...WithVoids`: voids are ignored) bounded by any curve
-//! [`crate::curve`] reads. Anything else is [`GeomError::Unsupported`] naming the profile.
+//! Supported: every parameterized profile of [`crate::parameterized_profile`] (rectangles,
+//! rounded and hollow rectangles, circles and hollow circles, ellipses, trapezia, I, L, T, U,
+//! C and Z shapes), `IfcArbitraryClosedProfileDef` and `...WithVoids` bounded by any curve
+//! [`crate::curve`] reads, `IfcDerivedProfileDef` (a parent profile moved, mirrored or
+//! scaled) and `IfcCompositeProfileDef` (several areas). Anything else is
+//! [`GeomError::Unsupported`] naming the profile.
 
-use std::f64::consts::TAU;
-
-use glam::DVec2;
+use glam::{DAffine2, DVec2};
 use poinav_ifc::Entity;
 
 use crate::axis2_placement::axis2placement_2d;
-use crate::curve::{self, MAX_ARC_STEP};
+use crate::cartesian_transformation_operator::transformation;
+use crate::curve;
 use crate::error::{degenerate, missing, required_ref, unsupported, GeomError};
+use crate::parameterized_profile;
 use crate::polygon;
 use crate::unit_assignment::Units;
 
-/// The outer boundary of `profile`: counter-clockwise, without a repeated closing point,
-/// lengths in metres (file lengths times `units.metres_per_unit`), `Position` applied.
-pub fn outline(profile: Entity<'_>, units: &Units) -> Result<Vec<DVec2>, GeomError> {
-    let s = units.metres_per_unit;
-    let dim = |name: &'static str| -> Result<f64, GeomError> {
-        let v = profile
-            .get_f64(name)
-            .ok_or_else(|| missing(&profile, name))?;
-        if v.is_finite() && v > 0.0 {
-            Ok(v * s)
-        } else {
-            Err(degenerate(&profile, "dimension is not a positive number"))
+/// Deepest nesting of derived and composite profiles followed.
+const MAX_DEPTH: usize = 16;
+
+/// One connected area of a profile: a counter-clockwise outer boundary and clockwise holes,
+/// without repeated closing points, in metres.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ProfileArea {
+    /// The outer boundary, counter-clockwise.
+    pub outer: Vec<DVec2>,
+    /// The holes, clockwise.
+    pub holes: Vec<Vec<DVec2>>,
+}
+
+impl ProfileArea {
+    /// Enclosed area less the holes, square metres.
+    pub fn area(&self) -> f64 {
+        polygon::signed_area(&self.outer)
+            + self
+                .holes
+                .iter()
+                .map(|h| polygon::signed_area(h))
+                .sum::<f64>()
+    }
+
+    fn transformed(self, a: &DAffine2) -> ProfileArea {
+        let map = |ring: Vec<DVec2>| ring.into_iter().map(|p| a.transform_point2(p)).collect();
+        let mut out = ProfileArea {
+            outer: map(self.outer),
+            holes: self.holes.into_iter().map(map).collect(),
+        };
+        if a.matrix2.determinant() < 0.0 {
+            out.outer.reverse();
+            out.holes.iter_mut().for_each(|h| h.reverse());
         }
-    };
-    let local: Vec<DVec2> = if profile.is_a("IfcRectangleProfileDef") {
-        let (x, y) = (dim("XDim")? / 2.0, dim("YDim")? / 2.0);
-        vec![
-            DVec2::new(-x, -y),
-            DVec2::new(x, -y),
-            DVec2::new(x, y),
-            DVec2::new(-x, y),
-        ]
-    } else if profile.is_a("IfcCircleProfileDef") {
-        ellipse(dim("Radius")?, dim("Radius")?)
-    } else if profile.is_a("IfcEllipseProfileDef") {
-        ellipse(dim("SemiAxis1")?, dim("SemiAxis2")?)
+        out
+    }
+}
+
+/// The outer boundary of `profile`: counter-clockwise, without a repeated closing point,
+/// lengths in metres (file lengths times `units.metres_per_unit`), `Position` applied. Voids
+/// are ignored; of a composite profile the largest area is taken.
+pub fn outline(profile: Entity<'_>, units: &Units) -> Result<Vec<DVec2>, GeomError> {
+    let areas = areas(profile, units)?;
+    areas
+        .into_iter()
+        .max_by(|a, b| polygon::signed_area(&a.outer).total_cmp(&polygon::signed_area(&b.outer)))
+        .map(|a| a.outer)
+        .ok_or_else(|| degenerate(&profile, "profile encloses no area"))
+}
+
+/// The areas of `profile` (one, except for composite profiles), holes included, lengths in
+/// metres, `Position` applied.
+pub fn areas(profile: Entity<'_>, units: &Units) -> Result<Vec<ProfileArea>, GeomError> {
+    areas_at(profile, units, 0)
+}
+
+fn areas_at(
+    profile: Entity<'_>,
+    units: &Units,
+    depth: usize,
+) -> Result<Vec<ProfileArea>, GeomError> {
+    if depth > MAX_DEPTH {
+        return Err(degenerate(&profile, "profiles nested too deeply"));
+    }
+    let s = units.metres_per_unit;
+    let no_area = || degenerate(&profile, "profile encloses no area");
+    if profile.is_a("IfcCompositeProfileDef") {
+        let parts = profile.get_refs("Profiles");
+        if parts.is_empty() {
+            return Err(missing(&profile, "Profiles"));
+        }
+        let mut out = Vec::new();
+        for part in parts {
+            out.extend(areas_at(part, units, depth + 1)?);
+        }
+        return Ok(out);
+    }
+    if profile.is_a("IfcDerivedProfileDef") {
+        let parent = required_ref(&profile, "ParentProfile", "IfcProfileDef")?;
+        let op = required_ref(&profile, "Operator", "IfcCartesianTransformationOperator2D")?;
+        let t = transformation(op, s)?;
+        let a = DAffine2::from_cols(
+            t.matrix3.x_axis.truncate(),
+            t.matrix3.y_axis.truncate(),
+            t.translation.truncate(),
+        );
+        return Ok(areas_at(parent, units, depth + 1)?
+            .into_iter()
+            .map(|area| area.transformed(&a))
+            .collect());
+    }
+    let (outer, holes) = if profile.is_a("IfcParameterizedProfileDef") {
+        parameterized_profile::shape(profile, s)?
     } else if profile.is_a("IfcArbitraryClosedProfileDef") {
         let curve = required_ref(&profile, "OuterCurve", "IfcCurve")?;
-        curve::polyline(curve, units)?
+        let outer = curve::polyline(curve, units)?;
+        let mut holes = Vec::new();
+        if profile.is_a("IfcArbitraryProfileDefWithVoids") {
+            for inner in profile.get_refs("InnerCurves") {
+                holes.push(curve::polyline(inner, units)?);
+            }
+        }
+        (outer, holes)
     } else {
         return Err(unsupported(&profile, "profile"));
     };
+    let outer = polygon::clean(outer).ok_or_else(no_area)?;
+    let holes = holes
+        .into_iter()
+        .filter_map(polygon::clean)
+        .map(|mut h| {
+            h.reverse();
+            h
+        })
+        .collect();
+    let area = ProfileArea { outer, holes };
     // Parameterised profiles have a Position (optional in IFC4, absent for arbitrary ones).
-    let placed = match profile.get("Position") {
+    Ok(vec![match profile.get("Position") {
         Some(_) => {
             let position = profile
                 .get_ref("Position")
                 .ok_or_else(|| missing(&profile, "Position"))?;
-            let a = axis2placement_2d(position, s)?;
-            local.into_iter().map(|p| a.transform_point2(p)).collect()
+            area.transformed(&axis2placement_2d(position, s)?)
         }
-        None => local,
-    };
-    polygon::clean(placed).ok_or_else(|| degenerate(&profile, "profile encloses no area"))
-}
-
-/// An ellipse with semi-axes `a` (x) and `b` (y), as chords.
-fn ellipse(a: f64, b: f64) -> Vec<DVec2> {
-    let n = (TAU / MAX_ARC_STEP).round() as usize;
-    (0..n)
-        .map(|i| {
-            let t = TAU * i as f64 / n as f64;
-            DVec2::new(a * t.cos(), b * t.sin())
-        })
-        .collect()
+        None => area,
+    }])
 }
 
 #[cfg(test)]
@@ -166,7 +238,9 @@ mod tests {
     #[test]
     fn circle_and_unsupported_profiles() {
         let m = model(
-            "#1=IFCCIRCLEPROFILEDEF(.AREA.,$,$,0.5);#2=IFCISHAPEPROFILEDEF(.AREA.,$,$,1.,1.,0.1,0.1,$,$,$,$);\
+            "#1=IFCCIRCLEPROFILEDEF(.AREA.,$,$,0.5);#4=IFCPOLYLINE((#5,#6));\
+             #5=IFCCARTESIANPOINT((0.,0.));#6=IFCCARTESIANPOINT((1.,0.));\
+             #2=IFCCENTERLINEPROFILEDEF(.AREA.,$,#4,0.1);\
              #3=IFCRECTANGLEPROFILEDEF(.AREA.,$,$,0.,1.);",
         );
         let c = outline_of(&m, 1, &Units::SI).unwrap();
@@ -174,7 +248,7 @@ mod tests {
         assert!((polygon::signed_area(&c) - std::f64::consts::PI * 0.25).abs() < 0.002);
         let err = outline_of(&m, 2, &Units::SI).unwrap_err();
         assert_eq!(err.id(), EntityId(2));
-        assert!(err.to_string().contains("IfcIShapeProfileDef"), "{err}");
+        assert!(err.to_string().contains("IfcCenterLineProfileDef"), "{err}");
         assert!(matches!(
             outline_of(&m, 3, &Units::SI),
             Err(GeomError::Degenerate { .. })

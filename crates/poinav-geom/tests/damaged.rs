@@ -1,5 +1,5 @@
 //! Damaged parts of a model give an error naming their `#id` for that element only; the
-//! other elements of the same model are still read.
+//! other elements of the same model are still read (footprints, door frames and meshes).
 
 use poinav_geom::{door_geometry, footprint_of, GeomError, PlacementCache};
 use poinav_ifc::{EntityId, Model};
@@ -12,7 +12,8 @@ const DATA: &str = "
 #20=IFCSPACE('0YvctVUKr0kugbFTf53O90',$,'good',$,$,#3,#13,$,.ELEMENT.,$,$);
 #30=IFCLOCALPLACEMENT(#31,#2);#31=IFCLOCALPLACEMENT(#30,#2);
 #32=IFCSPACE('0YvctVUKr0kugbFTf53O91',$,'cyclic placement',$,$,#30,#13,$,.ELEMENT.,$,$);
-#40=IFCISHAPEPROFILEDEF(.AREA.,$,$,1.,1.,0.1,0.1,$,$,$,$);#41=IFCEXTRUDEDAREASOLID(#40,#2,#4,2.5);
+#40=IFCCENTERLINEPROFILEDEF(.AREA.,$,#45,0.1);#45=IFCPOLYLINE((#46,#47));
+#46=IFCCARTESIANPOINT((0.,0.));#47=IFCCARTESIANPOINT((1.,0.));#41=IFCEXTRUDEDAREASOLID(#40,#2,#4,2.5);
 #42=IFCSHAPEREPRESENTATION($,'Body','SweptSolid',(#41));#43=IFCPRODUCTDEFINITIONSHAPE($,$,(#42));
 #44=IFCSPACE('0YvctVUKr0kugbFTf53O92',$,'unsupported profile',$,$,#3,#43,$,.ELEMENT.,$,$);
 #50=IFCDIRECTION((0.,0.,0.));#51=IFCEXTRUDEDAREASOLID(#10,#2,#50,2.5);
@@ -37,7 +38,7 @@ fn damaged_elements_fail_alone() {
     assert!(matches!(fp(32), Err(GeomError::PlacementChain { .. })));
     let e = fp(44).unwrap_err();
     assert_eq!(e.id(), EntityId(40));
-    assert!(e.to_string().contains("IfcIShapeProfileDef"), "{e}");
+    assert!(e.to_string().contains("IfcCenterLineProfileDef"), "{e}");
     assert!(matches!(
         fp(54),
         Err(GeomError::Degenerate {
@@ -121,6 +122,9 @@ mod fuzz {
                 prop_assert!(f.area() > 0.0);
             }
             let _ = door_geometry(&mut cache, door);
+            if let Ok(m) = poinav_geom::mesh_product(&mut cache, door) {
+                prop_assert!(!m.mesh.is_empty() && m.mesh.is_finite());
+            }
         }
     }
 }

@@ -121,7 +121,10 @@ impl<'m> Editor<'m> {
         let next = match self.next_id {
             Some(n) => n,
             None => {
-                let max = (0..self.model.len()).filter(|p| !self.removed.contains(&(*p as u32))).map(|p| self.model.max_id_used_at(p)).max();
+                let max = (0..self.model.len())
+                    .filter(|p| !self.removed.contains(&(*p as u32)))
+                    .map(|p| self.model.max_id_used_at(p))
+                    .max();
                 max.unwrap_or(0) + 1
             }
         };
@@ -492,10 +495,27 @@ mod tests {
     fn new_ids_never_capture_a_dangling_reference() {
         // Found by the enrichment fuzz target: #50 is referred to but not defined; a new
         // instance must not become #50.
-        let text = FILE.replace("#1= IFCWALL('0YvctVUKr0kugbFTf53O9L',#9,", "#1= IFCWALL('0YvctVUKr0kugbFTf53O9L',#50,");
+        let text = FILE.replace(
+            "#1= IFCWALL('0YvctVUKr0kugbFTf53O9L',#9,",
+            "#1= IFCWALL('0YvctVUKr0kugbFTf53O9L',#50,",
+        );
         let m = Model::from_bytes("x.ifc", text.into()).unwrap();
         let mut ed = Editor::new(&m);
-        let id = ed.add("IfcOwnerHistory", vec![Arg::Null, Arg::Null, Arg::Null, Arg::Enum("ADDED".into()), Arg::Null, Arg::Null, Arg::Null, Arg::Integer(0)]).unwrap();
+        let id = ed
+            .add(
+                "IfcOwnerHistory",
+                vec![
+                    Arg::Null,
+                    Arg::Null,
+                    Arg::Null,
+                    Arg::Enum("ADDED".into()),
+                    Arg::Null,
+                    Arg::Null,
+                    Arg::Null,
+                    Arg::Integer(0),
+                ],
+            )
+            .unwrap();
         assert_eq!(id, EntityId(51));
     }
 

@@ -233,7 +233,10 @@ impl Model {
 
     /// The largest `#id` the instance at `position` defines or mentions.
     pub(crate) fn max_id_used_at(&self, position: usize) -> u64 {
-        self.instances[position].id.0.max(self.max_refs.get(position).copied().unwrap_or(0))
+        self.instances[position]
+            .id
+            .0
+            .max(self.max_refs.get(position).copied().unwrap_or(0))
     }
 
     /// The instance `#id`, if it exists.

@@ -275,9 +275,16 @@ impl<'m> FactContext<'m> {
                     // No OverallWidth: the long side of the opening's (or the door's) footprint.
                     let mut cache = poinav_geom::PlacementCache::new(self.model);
                     let g = poinav_geom::door_geometry(&mut cache, e).ok();
-                    if let Some(r) = g.as_ref().and_then(|g| g.footprint.as_ref()).and_then(|p| p.min_area_rectangle()) {
+                    if let Some(r) = g
+                        .as_ref()
+                        .and_then(|g| g.footprint.as_ref())
+                        .and_then(|p| p.min_area_rectangle())
+                    {
                         f.clear_width_m = Some(r.length);
-                        f.clear_height_m = g.as_ref().and_then(|g| g.footprint.as_ref()).map(|p| p.height());
+                        f.clear_height_m = g
+                            .as_ref()
+                            .and_then(|g| g.footprint.as_ref())
+                            .map(|p| p.height());
                         f.clear_width_source = Some("opening geometry");
                     }
                 }

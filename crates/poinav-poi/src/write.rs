@@ -241,7 +241,8 @@ pub fn previous_enrichment(model: &Model) -> Vec<EntityId> {
         }
     }
     for app in model.instances_of("IfcApplication") {
-        if app.get_str("ApplicationIdentifier").as_deref() != Some(poinav_ifc::OWNER_APPLICATION_ID) {
+        if app.get_str("ApplicationIdentifier").as_deref() != Some(poinav_ifc::OWNER_APPLICATION_ID)
+        {
             continue;
         }
         let chain: Vec<EntityId> = model
@@ -250,7 +251,9 @@ pub fn previous_enrichment(model: &Model) -> Vec<EntityId> {
             .filter(|h| h.get_ref("OwningApplication") == Some(app))
             .flat_map(|h| {
                 let pao = h.get_ref("OwningUser");
-                let people = pao.map(|p| [p.get_ref("ThePerson"), p.get_ref("TheOrganization")]).unwrap_or_default();
+                let people = pao
+                    .map(|p| [p.get_ref("ThePerson"), p.get_ref("TheOrganization")])
+                    .unwrap_or_default();
                 std::iter::once(Some(h)).chain([pao]).chain(people)
             })
             .flatten()
@@ -259,7 +262,12 @@ pub fn previous_enrichment(model: &Model) -> Vec<EntityId> {
             .chain(app.get_ref("ApplicationDeveloper").map(|d| d.id()))
             .collect();
         // Only when nothing else uses it: an element added later in a BIM tool may point at it.
-        let used_elsewhere = chain.iter().any(|&c| model.referrers(c).iter().any(|r| !chain.contains(&r.id()) && !out.contains(&r.id())));
+        let used_elsewhere = chain.iter().any(|&c| {
+            model
+                .referrers(c)
+                .iter()
+                .any(|r| !chain.contains(&r.id()) && !out.contains(&r.id()))
+        });
         if !used_elsewhere {
             out.extend(chain);
         }

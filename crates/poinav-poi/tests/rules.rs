@@ -529,20 +529,42 @@ fn enriching_an_ifc2x3_file_without_owner_history_is_idempotent() {
     // and replaced on the next run.
     let text = "ISO-10303-21;HEADER;FILE_SCHEMA(('IFC2X3'));ENDSEC;DATA;\n\
         #1=IFCDOOR('0000000000000000000001',$,'D',$,$,$,$,$,2.1,0.8);\nENDSEC;END-ISO-10303-21;\n";
-    let opts = poinav_poi::WriteOptions { prefix: "Pset_".into(), timestamp: "2026-01-01T00:00:00".into() };
+    let opts = poinav_poi::WriteOptions {
+        prefix: "Pset_".into(),
+        timestamp: "2026-01-01T00:00:00".into(),
+    };
     let enrich = |bytes: Vec<u8>| {
         let m = Model::from_bytes("x.ifc", bytes).unwrap();
         let c = classify(&m, &RuleSet::defaults(), &RobotProfile::paper());
-        poinav_poi::write_enrichment(&m, &c, &opts).unwrap().to_bytes()
+        poinav_poi::write_enrichment(&m, &c, &opts)
+            .unwrap()
+            .to_bytes()
     };
     let once = enrich(text.as_bytes().to_vec());
-    assert!(String::from_utf8_lossy(&once).contains("IFCOWNERHISTORY("), "IFC2X3 needs an owner history");
+    assert!(
+        String::from_utf8_lossy(&once).contains("IFCOWNERHISTORY("),
+        "IFC2X3 needs an owner history"
+    );
     assert_eq!(enrich(once.clone()), once);
     // An element added later that uses poinav's owner history keeps it alive.
     let mut edited = String::from_utf8(once).unwrap();
-    let history = edited.lines().find(|l| l.contains("IFCOWNERHISTORY(")).unwrap().split('=').next().unwrap().to_string();
-    edited = edited.replace("ENDSEC;END", &format!("#9000=IFCWALL('0000000000000000000900',{history},'W',$,$,$,$,$);\nENDSEC;END"));
+    let history = edited
+        .lines()
+        .find(|l| l.contains("IFCOWNERHISTORY("))
+        .unwrap()
+        .split('=')
+        .next()
+        .unwrap()
+        .to_string();
+    edited = edited.replace(
+        "ENDSEC;END",
+        &format!("#9000=IFCWALL('0000000000000000000900',{history},'W',$,$,$,$,$);\nENDSEC;END"),
+    );
     let again = enrich(edited.into_bytes());
     let reread = Model::from_bytes("again.ifc", again).unwrap();
-    assert!(reread.diagnostics().is_empty(), "{:?}", reread.diagnostics());
+    assert!(
+        reread.diagnostics().is_empty(),
+        "{:?}",
+        reread.diagnostics()
+    );
 }

@@ -1,8 +1,13 @@
 //! The `poinav` command line: make building models (IFC) robot-ready.
 
 mod author;
+mod demo;
 mod enrich;
+mod export;
+mod floor;
 mod inspect;
+mod plan;
+mod simulate;
 
 use std::process::ExitCode;
 
@@ -22,6 +27,17 @@ enum Command {
     Inspect(inspect::Args),
     /// Add robot POI semantics (three property sets) to a copy of an IFC file; write CSV and IDS.
     Enrich(enrich::Args),
+    /// Draw a storey's floor plan as SVG: walls with door gaps, doors coloured by accessibility,
+    /// spaces with names, scale bar.
+    Plan(plan::Args),
+    /// Export the model in other formats: 3D (GLB, FBX).
+    #[command(subcommand)]
+    Export(export::Export),
+    /// Run a simulation scenario (robots with 5-ray sensors, Algorithm 1); exit 1 when an expectation fails.
+    Simulate(simulate::Args),
+    /// The main job end to end: test building, enrichment, the paper's three scenarios, design
+    /// iteration, 3D export and an HTML report.
+    Demo(demo::Args),
     /// Write the paper's test building (IFC4X3_ADD2): a corridor with rooms on both sides.
     DemoBuilding(author::DemoBuildingArgs),
     /// Change a model for design iteration, losslessly otherwise.
@@ -37,6 +53,10 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Inspect(args) => inspect::run(&args),
         Command::Enrich(args) => enrich::run(&args),
+        Command::Plan(args) => plan::run(&args),
+        Command::Export(export) => export::run(&export),
+        Command::Simulate(args) => simulate::run(&args),
+        Command::Demo(args) => demo::run(&args),
         Command::DemoBuilding(args) => author::demo_building(&args),
         Command::Patch(author::Patch::DoorWidth(args)) => author::door_width(&args),
     };

@@ -1,0 +1,794 @@
+//! The GLB and FBX exports checked by the real tools: a hand-made building (boxes on two
+//! storeys, styled and palette colours, a translucent window, an element without geometry,
+//! one without a storey, one far from the origin, a classified door) is exported, the GLB is
+//! run through the Khronos glTF-Validator (`tests/js/validate-gltf.cjs`, 0 errors and 0
+//! warnings) and the FBX through assimp (`assimp info`: one mesh per element with triangles,
+//! node names carrying the GlobalIds, the structure and bounds assimp reads from the GLB), and both are read back to check hierarchy, metadata,
+//! the Y-up frame and the geometry. Missing tools fail the test, naming the install command
+//! (`bash tests/js/setup.sh`).
+
+mod common;
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use glam::DVec3;
+use poinav_export::scene::{z_up_to_y_up, NO_STOREY};
+use poinav_export::{fbx, glb, SceneInput};
+use poinav_geom::{ElementMesh, Mesh};
+use poinav_ifc::spatial::Storey;
+use poinav_ifc::EntityId;
+use poinav_poi::{
+    Accessibility, AccessibilityStatus, Category, Classification, Classified, Facts, PoiType,
+    RobotProfile, Role, ValidationMethod,
+};
+use serde_json::Value;
+
+const SETUP: &str = "bash tests/js/setup.sh (npm ci --prefix tests/js; apt-get update && \
+                     apt-get install -y assimp-utils)";
+
+/// A closed box, triangles counter-clockwise seen from outside.
+fn cuboid(min: DVec3, max: DVec3) -> Mesh {
+    let positions = (0..8)
+        .map(|i| {
+            DVec3::new(
+                if i & 1 == 0 { min.x } else { max.x },
+                if i & 2 == 0 { min.y } else { max.y },
+                if i & 4 == 0 { min.z } else { max.z },
+            )
+        })
+        .collect();
+    let quads = [
+        [0, 2, 3, 1],
+        [4, 5, 7, 6],
+        [0, 1, 5, 4],
+        [2, 6, 7, 3],
+        [0, 4, 6, 2],
+        [1, 3, 7, 5],
+    ];
+    let triangles = quads
+        .iter()
+        .flat_map(|[a, b, c, d]| [[*a, *b, *c], [*a, *c, *d]])
+        .collect();
+    Mesh {
+        positions,
+        triangles,
+    }
+}
+
+fn v(x: f64, y: f64, z: f64) -> DVec3 {
+    DVec3::new(x, y, z)
+}
+
+struct Building {
+    storeys: Vec<Storey>,
+    elements: Vec<ElementMesh>,
+    poi: Classification,
+}
+
+const L0: EntityId = EntityId(100);
+const L1: EntityId = EntityId(200);
+
+fn element(
+    id: u64,
+    guid: &str,
+    class: &str,
+    name: Option<&str>,
+    storey: Option<EntityId>,
+    mesh: Mesh,
+    color: Option<[f32; 4]>,
+) -> ElementMesh {
+    ElementMesh {
+        product: EntityId(id),
+        global_id: guid.into(),
+        class: class.into(),
+        name: name.map(str::to_string),
+        storey,
+        mesh,
+        color,
+    }
+}
+
+fn building() -> Building {
+    let red = Some([0.8, 0.1, 0.1, 1.0]);
+    let storeys = vec![
+        Storey {
+            id: L0,
+            global_id: Some("0StoreyGround0000000001".into()),
+            name: Some("Ground floor".into()),
+            elevation_m: Some(0.0),
+        },
+        Storey {
+            id: L1,
+            global_id: Some("0StoreyFirst$000000_002".into()),
+            name: Some("First floor".into()),
+            elevation_m: Some(3.0),
+        },
+    ];
+    let elements = vec![
+        element(
+            1,
+            "1Wall$A0000000000000001",
+            "IfcWallStandardCase",
+            Some("Wall A"),
+            Some(L0),
+            cuboid(v(0.0, 0.0, 0.0), v(5.0, 0.2, 3.0)),
+            None,
+        ),
+        element(
+            2,
+            "1Slab_00000000000000002",
+            "IfcSlab",
+            Some("Floor slab"),
+            Some(L0),
+            cuboid(v(0.0, 0.0, -0.3), v(5.0, 4.0, 0.0)),
+            red,
+        ),
+        element(
+            3,
+            "1Door000000000000000003",
+            "IfcDoor",
+            Some("Door D1"),
+            Some(L1),
+            cuboid(v(1.0, 0.0, 3.0), v(1.9, 0.2, 5.1)),
+            red,
+        ),
+        element(
+            4,
+            "1Window00000000000000004",
+            "IfcWindow",
+            None,
+            Some(L1),
+            cuboid(v(3.0, 0.0, 4.0), v(4.2, 0.1, 5.2)),
+            None,
+        ),
+        element(
+            5,
+            "1Opening0000000000000005",
+            "IfcBuildingElementProxy",
+            Some("No geometry"),
+            Some(L1),
+            Mesh::default(),
+            Some([0.2, 0.9, 0.2, 1.0]),
+        ),
+        element(
+            6,
+            "1Chair00000000000000006",
+            "IfcFurniture",
+            Some("Chair"),
+            None,
+            cuboid(v(2.0, 2.0, 0.0), v(2.5, 2.5, 0.9)),
+            None,
+        ),
+        // Georeferenced: 600 km east, 5000 km north.
+        element(
+            7,
+            "1Survey0000000000000007",
+            "IfcColumn",
+            Some("Survey column"),
+            Some(L0),
+            cuboid(
+                v(600_000.0, 5_000_000.0, 0.0),
+                v(600_000.3, 5_000_000.3, 3.0),
+            ),
+            Some([0.3, 0.3, 0.9, 1.0]),
+        ),
+    ];
+    let door = Classified {
+        id: EntityId(3),
+        global_id: "1Door000000000000000003".into(),
+        class: "IfcDoor".into(),
+        name: Some("Door D1".into()),
+        storey: Some("First floor".into()),
+        rule: "R2-door".into(),
+        category: Category::Structural,
+        poi_type: PoiType::TransitionElement,
+        primary: vec![Role::Transition],
+        conditional: vec![Role::Narrow],
+        accessibility: Some(Accessibility {
+            min_clearance_width_m: 0.9,
+            min_clearance_height_m: 2.0,
+            status: AccessibilityStatus::Restricted,
+            method: ValidationMethod::GeometricAnalysis,
+            reason: "clear width 0.850 m".into(),
+        }),
+        coordination: None,
+        facts: Facts::default(),
+    };
+    Building {
+        storeys,
+        elements,
+        poi: Classification {
+            profile: RobotProfile::paper(),
+            elements: vec![door],
+        },
+    }
+}
+
+fn scene(b: &Building) -> SceneInput<'_> {
+    SceneInput {
+        storeys: &b.storeys,
+        elements: &b.elements,
+        poi: Some(&b.poi),
+    }
+}
+
+/// Runs the Khronos glTF-Validator on `files`; one report each.
+fn gltf_validator(files: &[&Path]) -> Vec<Value> {
+    let js = common::root().join("tests/js");
+    assert!(
+        js.join("node_modules/gltf-validator/package.json")
+            .is_file(),
+        "the Khronos glTF-Validator is not installed in tests/js/node_modules: run {SETUP}"
+    );
+    let out = Command::new("node")
+        .arg(js.join("validate-gltf.cjs"))
+        .args(files)
+        .output()
+        .unwrap_or_else(|e| panic!("node (Node.js) cannot be run ({e}): install it, then {SETUP}"));
+    assert!(
+        out.status.success(),
+        "glTF-Validator failed: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let reports: Value = serde_json::from_slice(&out.stdout).expect("the validator prints JSON");
+    reports.as_array().unwrap().clone()
+}
+
+/// `assimp info FILE`'s output; `raw` adds `-r` (no post-processing: assimp's default
+/// post-processing merges identical meshes into instances, so only a raw import counts one
+/// mesh per element in general).
+fn assimp_info(file: &Path, raw: bool) -> String {
+    let mut cmd = Command::new("assimp");
+    cmd.arg("info").arg(file);
+    if raw {
+        cmd.arg("-r");
+    }
+    let out = cmd
+        .output()
+        .unwrap_or_else(|e| panic!("assimp cannot be run ({e}): run {SETUP}"));
+    let text = String::from_utf8_lossy(&out.stdout).into_owned();
+    assert!(
+        out.status.success(),
+        "assimp info {} failed: {text}{}",
+        file.display(),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    text
+}
+
+/// The JSON chunk of a GLB.
+fn glb_json(bytes: &[u8]) -> Value {
+    let len = u32::from_le_bytes(bytes[12..16].try_into().unwrap()) as usize;
+    serde_json::from_slice(&bytes[20..20 + len]).unwrap()
+}
+
+/// A GLB accessor's floats (tightly packed VEC3 in the BIN chunk).
+fn vec3s(bytes: &[u8], json: &Value, accessor: usize) -> Vec<DVec3> {
+    let json_len = u32::from_le_bytes(bytes[12..16].try_into().unwrap()) as usize;
+    let bin = &bytes[20 + json_len + 8..];
+    let a = &json["accessors"][accessor];
+    let view = &json["bufferViews"][a["bufferView"].as_u64().unwrap() as usize];
+    let start = (view["byteOffset"].as_u64().unwrap() + a["byteOffset"].as_u64().unwrap()) as usize;
+    let f = |i: usize| f64::from(f32::from_le_bytes(bin[i..i + 4].try_into().unwrap()));
+    (0..a["count"].as_u64().unwrap() as usize)
+        .map(|k| {
+            let at = start + 12 * k;
+            DVec3::new(f(at), f(at + 4), f(at + 8))
+        })
+        .collect()
+}
+
+fn tmp() -> tempfile::TempDir {
+    tempfile::tempdir().unwrap()
+}
+
+fn outputs(dir: &Path) -> (PathBuf, PathBuf) {
+    (dir.join("building.glb"), dir.join("building.fbx"))
+}
+
+#[test]
+fn glb_passes_the_khronos_validator_with_one_node_per_element() {
+    let b = building();
+    let dir = tmp();
+    let (glb_path, _) = outputs(dir.path());
+    glb::write_glb(&glb_path, &scene(&b)).unwrap();
+    let bytes = std::fs::read(&glb_path).unwrap();
+    assert_eq!(bytes, glb::to_glb(&scene(&b)), "write_glb writes to_glb");
+    assert_eq!(bytes, glb::to_glb(&scene(&b)), "deterministic");
+
+    let report = &gltf_validator(&[&glb_path])[0];
+    let issues = &report["issues"];
+    eprintln!(
+        "glTF-Validator {}: {} errors, {} warnings, {} infos, {} hints",
+        report["validatorVersion"],
+        issues["numErrors"],
+        issues["numWarnings"],
+        issues["numInfos"],
+        issues["numHints"]
+    );
+    assert_eq!(issues["numErrors"], 0, "{:#}", issues["messages"]);
+    assert_eq!(issues["numWarnings"], 0, "{:#}", issues["messages"]);
+    assert_eq!(report["mimeType"], "model/gltf-binary");
+    let with_triangles = b.elements.iter().filter(|e| !e.mesh.is_empty()).count();
+    assert_eq!(report["info"]["drawCallCount"], with_triangles);
+
+    let json = glb_json(&bytes);
+    assert_eq!(
+        json["asset"]["generator"],
+        format!("poinav {}", env!("CARGO_PKG_VERSION"))
+    );
+    let nodes = json["nodes"].as_array().unwrap();
+    // Two storeys, the "No storey" group, then exactly one node per element.
+    assert_eq!(nodes.len(), 3 + b.elements.len());
+    let element_nodes: Vec<&Value> = nodes
+        .iter()
+        .filter(|n| {
+            n["extras"]["GlobalId"].is_string() && n["extras"]["IfcClass"] != "IfcBuildingStorey"
+        })
+        .collect();
+    assert_eq!(element_nodes.len(), b.elements.len());
+    let roots = json["scenes"][0]["nodes"].as_array().unwrap();
+    let group_names: Vec<&str> = roots
+        .iter()
+        .map(|r| {
+            nodes[r.as_u64().unwrap() as usize]["name"]
+                .as_str()
+                .unwrap()
+        })
+        .collect();
+    assert_eq!(group_names, ["Ground floor", "First floor", NO_STOREY]);
+    assert_eq!(nodes[1]["translation"], serde_json::json!([0.0, 3.0, 0.0]));
+    assert_eq!(nodes[1]["extras"]["GlobalId"], "0StoreyFirst$000000_002");
+    assert_eq!(json["meshes"].as_array().unwrap().len(), with_triangles);
+    // Red is shared by the slab and the door; wall, window, chair, column: own colours.
+    assert_eq!(json["materials"].as_array().unwrap().len(), 5);
+
+    for (gi, storey_name) in [
+        (0, Some("Ground floor")),
+        (1, Some("First floor")),
+        (2, None),
+    ] {
+        for c in nodes[gi]["children"].as_array().unwrap() {
+            let n = &nodes[c.as_u64().unwrap() as usize];
+            let guid = n["extras"]["GlobalId"].as_str().unwrap();
+            let e = b.elements.iter().find(|e| e.global_id == guid).unwrap();
+            assert_eq!(n["extras"]["IfcClass"], e.class.as_str());
+            assert_eq!(n["extras"]["Storey"].as_str(), storey_name);
+            let name = e.name.clone().unwrap_or(e.class.clone());
+            assert_eq!(n["name"], name.as_str());
+            assert_eq!(n.get("mesh").is_some(), !e.mesh.is_empty(), "{guid}");
+            let Some(m) = n["mesh"].as_u64() else {
+                continue;
+            };
+            // World bounds (Y up) = storey translation + node translation + accessor bounds.
+            let prim = &json["meshes"][m as usize]["primitives"][0];
+            let acc = &json["accessors"][prim["attributes"]["POSITION"].as_u64().unwrap() as usize];
+            let t = |n: &Value| {
+                n.get("translation")
+                    .map(|t| {
+                        DVec3::new(
+                            t[0].as_f64().unwrap(),
+                            t[1].as_f64().unwrap(),
+                            t[2].as_f64().unwrap(),
+                        )
+                    })
+                    .unwrap_or(DVec3::ZERO)
+            };
+            let at = |k: &str| {
+                DVec3::new(
+                    acc[k][0].as_f64().unwrap(),
+                    acc[k][1].as_f64().unwrap(),
+                    acc[k][2].as_f64().unwrap(),
+                )
+            };
+            let offset = t(&nodes[gi]) + t(n);
+            let (lo, hi) = e.mesh.bounds().unwrap();
+            let (a, c) = (z_up_to_y_up(lo), z_up_to_y_up(hi));
+            let want_lo = a.min(c);
+            let want_hi = a.max(c);
+            assert!(
+                (offset + at("min") - want_lo).abs().max_element() < 1e-6,
+                "{guid}"
+            );
+            assert!(
+                (offset + at("max") - want_hi).abs().max_element() < 1e-6,
+                "{guid}"
+            );
+            // Flat normals: every normal is one of the six axis directions of a box.
+            let normals = vec3s(
+                &bytes,
+                &json,
+                prim["attributes"]["NORMAL"].as_u64().unwrap() as usize,
+            );
+            assert_eq!(normals.len(), 24, "4 corners x 6 faces");
+            for n in normals {
+                assert!((n.length() - 1.0).abs() < 1e-6);
+                assert_eq!(n.abs().max_element(), 1.0);
+            }
+        }
+    }
+    let door = element_nodes
+        .iter()
+        .find(|n| n["extras"]["GlobalId"] == "1Door000000000000000003")
+        .unwrap();
+    assert_eq!(door["extras"]["POI_Category"], "Structural");
+    assert_eq!(door["extras"]["POI_Type"], "Transition Element");
+    assert_eq!(
+        door["extras"]["POI_PrimaryRoles"],
+        serde_json::json!(["A-2"])
+    );
+    assert_eq!(
+        door["extras"]["POI_ConditionalRoles"],
+        serde_json::json!(["B-2"])
+    );
+    assert_eq!(door["extras"]["AccessibilityStatus"], "RESTRICTED");
+    let wall = element_nodes
+        .iter()
+        .find(|n| n["name"] == "Wall A")
+        .unwrap();
+    assert!(wall["extras"].get("POI_Category").is_none());
+}
+
+#[test]
+fn glb_edge_cases_pass_the_validator() {
+    // No elements at all; only empty meshes; no storeys; degenerate-only geometry.
+    let degenerate = Mesh {
+        positions: vec![DVec3::ZERO, DVec3::X, DVec3::X * 2.0],
+        triangles: vec![[0, 1, 2], [0, 0, 1]],
+    };
+    let e = |id, mesh| {
+        element(
+            id,
+            &format!("2Edge{id:018}"),
+            "IfcWall",
+            None,
+            None,
+            mesh,
+            None,
+        )
+    };
+    let cases: Vec<Vec<ElementMesh>> = vec![
+        vec![],
+        vec![e(1, Mesh::default())],
+        vec![e(1, degenerate), e(2, cuboid(DVec3::ZERO, DVec3::ONE))],
+    ];
+    let dir = tmp();
+    let mut files = Vec::new();
+    for (i, elements) in cases.iter().enumerate() {
+        let path = dir.path().join(format!("case{i}.glb"));
+        let s = SceneInput {
+            storeys: &[],
+            elements,
+            poi: None,
+        };
+        glb::write_glb(&path, &s).unwrap();
+        let json = glb_json(&std::fs::read(&path).unwrap());
+        let groups = usize::from(!elements.is_empty());
+        assert_eq!(
+            json.get("nodes").map_or(0, |n| n.as_array().unwrap().len()),
+            elements.len() + groups
+        );
+        files.push(path);
+    }
+    let paths: Vec<&Path> = files.iter().map(PathBuf::as_path).collect();
+    for r in gltf_validator(&paths) {
+        assert_eq!(
+            r["issues"]["numErrors"], 0,
+            "{}: {:#}",
+            r["file"], r["issues"]["messages"]
+        );
+        assert_eq!(
+            r["issues"]["numWarnings"], 0,
+            "{}: {:#}",
+            r["file"], r["issues"]["messages"]
+        );
+    }
+}
+
+/// The value after `label` on the first line that has it (`Meshes:       6`).
+fn count(info: &str, label: &str) -> usize {
+    info.lines()
+        .find_map(|l| l.trim().strip_prefix(label))
+        .unwrap_or_else(|| panic!("no {label} in assimp's output:\n{info}"))
+        .trim()
+        .parse()
+        .unwrap()
+}
+
+#[test]
+fn fbx_opens_in_assimp_with_one_mesh_per_element() {
+    let b = building();
+    let dir = tmp();
+    let (_, fbx_path) = outputs(dir.path());
+    fbx::write_fbx(&fbx_path, &scene(&b)).unwrap();
+    let bytes = std::fs::read(&fbx_path).unwrap();
+    assert_eq!(
+        bytes,
+        fbx::to_fbx(&scene(&b)),
+        "write_fbx writes to_fbx, deterministically"
+    );
+    assert!(bytes.starts_with(fbx::MAGIC));
+    assert!(bytes.ends_with(&fbx::FOOTER_MAGIC));
+
+    let info = assimp_info(&fbx_path, true);
+    eprintln!("{info}");
+    let with_triangles = b.elements.iter().filter(|e| !e.mesh.is_empty()).count();
+    assert_eq!(count(&info, "Meshes:"), with_triangles);
+    assert_eq!(count(&info, "Faces:"), 12 * with_triangles);
+    // Root, three groups, one node per element.
+    assert_eq!(count(&info, "Nodes:"), 1 + 3 + b.elements.len());
+    // With assimp's default post-processing (validation included) too; the boxes all differ,
+    // so no two meshes merge into instances.
+    let processed = assimp_info(&fbx_path, false);
+    assert_eq!(count(&processed, "Meshes:"), with_triangles);
+    for e in &b.elements {
+        assert!(
+            info.contains(&format!("[{}]", e.global_id)),
+            "no node named with {}:\n{info}",
+            e.global_id
+        );
+    }
+    // The hierarchy: storey -> elements, meshes only where there are triangles.
+    let mut parent_of = std::collections::HashMap::new();
+    let mut group = String::new();
+    for line in info
+        .lines()
+        .skip_while(|l| !l.starts_with("Node hierarchy"))
+    {
+        if let Some(name) = line.strip_prefix("├╴").or(line.strip_prefix("└╴")) {
+            group = name.to_string();
+        } else if let Some(e) = b.elements.iter().find(|e| line.contains(&e.global_id)) {
+            parent_of.insert(e.global_id.clone(), group.clone());
+            assert_eq!(line.contains("(mesh "), !e.mesh.is_empty(), "{line}");
+        }
+    }
+    assert_eq!(parent_of.len(), b.elements.len());
+    for e in &b.elements {
+        let want = match e.storey {
+            Some(L0) => "Ground floor [0StoreyGround0000000001]",
+            Some(L1) => "First floor [0StoreyFirst$000000_002]",
+            _ => NO_STOREY,
+        };
+        assert_eq!(parent_of[&e.global_id], want, "{}", e.global_id);
+    }
+    // assimp's world bounds: metres, Y up (IFC y becomes -Z).
+    let point = |label: &str| -> Vec<f64> {
+        let line = info.lines().find(|l| l.starts_with(label)).unwrap();
+        let inner = &line[line.find('(').unwrap() + 1..line.find(')').unwrap()];
+        inner
+            .split_whitespace()
+            .map(|x| x.parse().unwrap())
+            .collect()
+    };
+    let (lo, hi) = (point("Minimum point"), point("Maximum point"));
+    assert!(
+        (lo[1] - -0.3).abs() < 1e-5 && (hi[1] - 5.2).abs() < 1e-5,
+        "{lo:?} {hi:?}"
+    );
+    assert!(
+        lo[0].abs() < 1e-5 && (hi[0] - 600_000.3).abs() < 0.1,
+        "{lo:?} {hi:?}"
+    );
+    assert!(
+        (lo[2] - -5_000_000.3).abs() < 1.0 && hi[2].abs() < 1e-5,
+        "{lo:?} {hi:?}"
+    );
+
+    // The GLB of the same scene, read by the same importer, has the same structure and bounds.
+    let glb_path = dir.path().join("building.glb");
+    glb::write_glb(&glb_path, &scene(&b)).unwrap();
+    let from_glb = assimp_info(&glb_path, true);
+    for label in ["Meshes:", "Nodes:", "Faces:"] {
+        assert_eq!(count(&from_glb, label), count(&info, label), "{label}");
+    }
+    for label in ["Minimum point", "Maximum point"] {
+        let line = |text: &str| {
+            text.lines()
+                .find(|l| l.starts_with(label))
+                .unwrap()
+                .to_string()
+        };
+        assert_eq!(line(&from_glb), line(&info));
+    }
+}
+
+/// A record read back: name, properties (strings and integers only), children.
+#[derive(Debug)]
+struct Record {
+    name: String,
+    strings: Vec<String>,
+    ints: Vec<i64>,
+    children: Vec<Record>,
+}
+
+/// Reads the records from `at` to the null record that ends the list; checks that each end
+/// offset is exactly where the record's content ends. Returns the records and the position
+/// after the null record.
+fn read_records(b: &[u8], mut at: usize) -> (Vec<Record>, usize) {
+    let u32_at = |i: usize| u32::from_le_bytes(b[i..i + 4].try_into().unwrap()) as usize;
+    let mut out = Vec::new();
+    loop {
+        let end = u32_at(at);
+        if end == 0 {
+            assert_eq!(&b[at..at + 13], &[0u8; 13]);
+            return (out, at + 13);
+        }
+        let (count, list_len, name_len) = (u32_at(at + 4), u32_at(at + 8), b[at + 12] as usize);
+        let name = String::from_utf8(b[at + 13..at + 13 + name_len].to_vec()).unwrap();
+        let mut p = at + 13 + name_len;
+        let props_start = p;
+        let (mut strings, mut ints) = (Vec::new(), Vec::new());
+        for _ in 0..count {
+            let code = b[p];
+            p += 1;
+            match code {
+                b'C' => p += 1,
+                b'Y' => p += 2,
+                b'I' => {
+                    ints.push(i64::from(i32::from_le_bytes(
+                        b[p..p + 4].try_into().unwrap(),
+                    )));
+                    p += 4
+                }
+                b'F' => p += 4,
+                b'D' => p += 8,
+                b'L' => {
+                    ints.push(i64::from_le_bytes(b[p..p + 8].try_into().unwrap()));
+                    p += 8
+                }
+                b'S' | b'R' => {
+                    let n = u32_at(p);
+                    if code == b'S' {
+                        strings.push(String::from_utf8(b[p + 4..p + 4 + n].to_vec()).unwrap());
+                    }
+                    p += 4 + n
+                }
+                b'i' | b'l' | b'f' | b'd' | b'b' => {
+                    assert_eq!(u32_at(p + 4), 0, "uncompressed");
+                    let size = match code {
+                        b'i' | b'f' => 4,
+                        b'b' => 1,
+                        _ => 8,
+                    };
+                    assert_eq!(u32_at(p + 8), u32_at(p) * size);
+                    p += 12 + u32_at(p + 8)
+                }
+                other => panic!("unknown property type {other}"),
+            }
+        }
+        assert_eq!(p - props_start, list_len, "{name}: property list length");
+        let mut children = Vec::new();
+        if p < end {
+            let (c, after) = read_records(b, p);
+            children = c;
+            p = after;
+        }
+        assert_eq!(p, end, "{name}: end offset");
+        out.push(Record {
+            name,
+            strings,
+            ints,
+            children,
+        });
+        at = end;
+    }
+}
+
+impl Record {
+    fn child(&self, name: &str) -> &Record {
+        self.children.iter().find(|c| c.name == name).unwrap()
+    }
+
+    /// User properties (`P` with flag `U`) as (name, value).
+    fn user_props(&self) -> Vec<(String, String)> {
+        self.child("Properties70")
+            .children
+            .iter()
+            .filter(|p| p.strings[3] == "U")
+            .map(|p| (p.strings[0].clone(), p.strings[4].clone()))
+            .collect()
+    }
+}
+
+#[test]
+fn fbx_records_nest_exactly_and_carry_the_metadata() {
+    let b = building();
+    let bytes = fbx::to_fbx(&scene(&b));
+    let (top, after) = read_records(&bytes, 27);
+    let names: Vec<&str> = top.iter().map(|r| r.name.as_str()).collect();
+    assert_eq!(
+        names,
+        [
+            "FBXHeaderExtension",
+            "FileId",
+            "CreationTime",
+            "Creator",
+            "GlobalSettings",
+            "Documents",
+            "References",
+            "Definitions",
+            "Objects",
+            "Connections",
+            "Takes"
+        ]
+    );
+    // Footer: id, 4 zeros, padding to 16, version, 120 zeros, magic.
+    assert_eq!(&bytes[after..after + 16], &fbx::FOOTER_ID);
+    let tail = &bytes[after + 20..];
+    let pad = tail.len() - 4 - 120 - 16;
+    assert!((1..=16).contains(&pad) && (after + 20 + pad) % 16 == 0);
+    assert_eq!(
+        u32::from_le_bytes(tail[pad..pad + 4].try_into().unwrap()),
+        7400
+    );
+
+    let settings = top[4].child("Properties70");
+    let setting = |k: &str| {
+        settings
+            .children
+            .iter()
+            .find(|p| p.strings[0] == k)
+            .map(|p| p.ints[0])
+    };
+    assert_eq!(setting("UpAxis"), Some(1));
+    assert_eq!(setting("FrontAxis"), Some(2));
+    assert_eq!(setting("CoordAxis"), Some(0));
+
+    let objects = &top[8].children;
+    let of = |ty: &str| objects.iter().filter(|o| o.name == ty).count() as i64;
+    let definitions = &top[7];
+    let total: i64 = definitions.child("Count").ints[0];
+    assert_eq!(total, 1 + objects.len() as i64);
+    for d in definitions
+        .children
+        .iter()
+        .filter(|d| d.name == "ObjectType")
+    {
+        if d.strings[0] != "GlobalSettings" {
+            assert_eq!(
+                d.child("Count").ints[0],
+                of(&d.strings[0]),
+                "{}",
+                d.strings[0]
+            );
+        }
+    }
+    let with_triangles = b.elements.iter().filter(|e| !e.mesh.is_empty()).count() as i64;
+    assert_eq!(of("Geometry"), with_triangles);
+    assert_eq!(of("Model"), (b.elements.len() + 3) as i64);
+    assert_eq!(of("Material"), 5);
+
+    let models: Vec<&Record> = objects.iter().filter(|o| o.name == "Model").collect();
+    let door = models
+        .iter()
+        .find(|m| m.strings[0].starts_with("Door D1 [1Door000000000000000003]\0\x01Model"))
+        .unwrap();
+    assert_eq!(door.strings[1], "Mesh");
+    let props = door.user_props();
+    let get = |k: &str| props.iter().find(|(n, _)| n == k).map(|(_, v)| v.as_str());
+    assert_eq!(get("GlobalId"), Some("1Door000000000000000003"));
+    assert_eq!(get("IfcClass"), Some("IfcDoor"));
+    assert_eq!(get("Storey"), Some("First floor"));
+    assert_eq!(get("POI_PrimaryRoles"), Some("A-2"));
+    assert_eq!(get("POI_ConditionalRoles"), Some("B-2"));
+    assert_eq!(get("AccessibilityStatus"), Some("RESTRICTED"));
+    let empty = models
+        .iter()
+        .find(|m| m.strings[0].contains("1Opening0000000000000005"))
+        .unwrap();
+    assert_eq!(empty.strings[1], "Null");
+
+    // Every connection joins existing objects (or the root, 0); each model has one parent.
+    let ids: std::collections::HashSet<i64> = objects.iter().map(|o| o.ints[0]).collect();
+    let mut parents = std::collections::HashMap::new();
+    for c in &top[9].children {
+        assert_eq!(c.strings[0], "OO");
+        let (child, parent) = (c.ints[0], c.ints[1]);
+        assert!(ids.contains(&child) && (parent == 0 || ids.contains(&parent)));
+        if models.iter().any(|m| m.ints[0] == child) {
+            assert!(parents.insert(child, parent).is_none());
+        }
+    }
+    assert_eq!(parents.len(), models.len());
+}

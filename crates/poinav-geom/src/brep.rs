@@ -1,0 +1,161 @@
+//! Boundary representations made of `IfcFace`s: `IfcFacetedBrep` (and `...WithVoids`),
+//! `IfcShellBasedSurfaceModel` and `IfcFaceBasedSurfaceModel`, as triangle meshes. Faces are
+//! bounded by `IfcPolyLoop`s; inner bounds become holes; vertices are shared through the
+//! `IfcCartesianPoint` they are written with, so a closed shell gives a closed mesh.
+
+use rustc_hash::FxHashMap;
+
+use glam::DVec3;
+use poinav_ifc::{Entity, EntityId};
+
+use crate::cartesian_point::point3;
+use crate::error::{missing, unsupported, GeomError};
+use crate::mesh::Mesh;
+use crate::triangulation::{newell_normal, triangulate_3d};
+
+/// Most faces one product's breps may have.
+pub const MAX_FACES: usize = 2_000_000;
+
+/// Collects faces into one mesh, sharing vertices by point `#id`.
+#[derive(Debug, Default)]
+pub(crate) struct FaceMesher {
+    mesh: Mesh,
+    vertices: FxHashMap<EntityId, u32>,
+    faces: usize,
+}
+
+impl FaceMesher {
+    /// The mesh made so far.
+    pub(crate) fn finish(self) -> Mesh {
+        self.mesh
+    }
+
+    /// Adds the faces (`CfsFaces`) of an `IfcConnectedFaceSet` (open or closed shell).
+    pub(crate) fn shell(&mut self, shell: Entity<'_>, s: f64) -> Result<(), GeomError> {
+        if !shell.is_a("IfcConnectedFaceSet") {
+            return Err(unsupported(
+                &shell,
+                "shell (expected an IfcConnectedFaceSet)",
+            ));
+        }
+        let faces = shell.get_refs("CfsFaces");
+        if faces.is_empty() {
+            return Err(missing(&shell, "CfsFaces"));
+        }
+        for face in faces {
+            self.face(face, s)?;
+        }
+        Ok(())
+    }
+
+    /// Adds one `IfcFace`. Faces with no area are left out.
+    fn face(&mut self, face: Entity<'_>, s: f64) -> Result<(), GeomError> {
+        self.faces += 1;
+        if self.faces > MAX_FACES {
+            return Err(crate::error::degenerate(&face, "too many faces"));
+        }
+        let mut loops: Vec<(bool, Vec<EntityId>, Vec<DVec3>)> = Vec::new();
+        for bound in face.get_refs("Bounds") {
+            let lp = bound
+                .get_ref("Bound")
+                .ok_or_else(|| missing(&bound, "Bound"))?;
+            if !lp.is_a("IfcPolyLoop") {
+                return Err(unsupported(&lp, "face loop (only IfcPolyLoop)"));
+            }
+            let mut ids = lp.get("Polygon").map(|v| v.refs()).unwrap_or_default();
+            ids.dedup();
+            while ids.len() > 1 && ids.first() == ids.last() {
+                ids.pop();
+            }
+            if ids.len() < 3 {
+                continue;
+            }
+            if bound.get("Orientation").and_then(|v| v.as_enum()) == Some("F") {
+                ids.reverse();
+            }
+            let mut pts = Vec::with_capacity(ids.len());
+            for &id in &ids {
+                let p = lp
+                    .model()
+                    .entity(id)
+                    .ok_or_else(|| missing(&lp, "Polygon"))?;
+                pts.push(point3(p)? * s);
+            }
+            loops.push((bound.is_a("IfcFaceOuterBound"), ids, pts));
+        }
+        if loops.is_empty() {
+            return Ok(());
+        }
+        // The outer bound; when none is marked, the loop enclosing the most area.
+        let outer = loops.iter().position(|l| l.0).unwrap_or_else(|| {
+            (0..loops.len())
+                .max_by(|&a, &b| {
+                    let area = |i: usize| newell_normal(&loops[i].2).length();
+                    area(a).total_cmp(&area(b))
+                })
+                .unwrap_or(0)
+        });
+        let outer_loop = loops.swap_remove(outer);
+        let holes: Vec<Vec<DVec3>> = loops.iter().map(|l| l.2.clone()).collect();
+        let Some(tris) = triangulate_3d(&outer_loop.2, &holes) else {
+            return Ok(());
+        };
+        let ids: Vec<EntityId> = std::iter::once(&outer_loop)
+            .chain(loops.iter())
+            .flat_map(|l| l.1.iter().copied())
+            .collect();
+        let pts: Vec<DVec3> = std::iter::once(&outer_loop)
+            .chain(loops.iter())
+            .flat_map(|l| l.2.iter().copied())
+            .collect();
+        let index: Vec<u32> = ids
+            .iter()
+            .zip(&pts)
+            .map(|(id, p)| {
+                *self.vertices.entry(*id).or_insert_with(|| {
+                    self.mesh.positions.push(*p);
+                    self.mesh.positions.len() as u32 - 1
+                })
+            })
+            .collect();
+        self.mesh.triangles.extend(
+            tris.iter()
+                .map(|t| t.map(|i| index[i as usize]))
+                .filter(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2]),
+        );
+        Ok(())
+    }
+}
+
+/// The mesh of an `IfcFacetedBrep` (outer shell and, for `...WithVoids`, the void shells),
+/// an `IfcShellBasedSurfaceModel` or an `IfcFaceBasedSurfaceModel`, in metres; true when it
+/// is a solid (a brep) rather than a surface model.
+pub fn face_mesh(item: Entity<'_>, s: f64) -> Result<(Mesh, bool), GeomError> {
+    let mut m = FaceMesher::default();
+    let solid = if item.is_a("IfcManifoldSolidBrep") {
+        if !item.is_a("IfcFacetedBrep") {
+            return Err(unsupported(&item, "brep (only faceted breps)"));
+        }
+        let outer = item
+            .get_ref("Outer")
+            .ok_or_else(|| missing(&item, "Outer"))?;
+        m.shell(outer, s)?;
+        for void in item.get_refs("Voids") {
+            m.shell(void, s)?;
+        }
+        true
+    } else if item.is_a("IfcFaceBasedSurfaceModel") {
+        for set in item.get_refs("FbsmFaces") {
+            m.shell(set, s)?;
+        }
+        false
+    } else if item.is_a("IfcShellBasedSurfaceModel") {
+        for shell in item.get_refs("SbsmBoundary") {
+            m.shell(shell, s)?;
+        }
+        false
+    } else {
+        return Err(unsupported(&item, "face-based representation item"));
+    };
+    Ok((m.finish(), solid))
+}

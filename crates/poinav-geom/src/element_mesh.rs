@@ -1,0 +1,198 @@
+//! Meshes of a model's products in world coordinates: every element with a body
+//! representation, openings (`IfcRelVoidsElement`) subtracted from their hosts, and every
+//! space; in parallel, in file order, failures reported per product.
+//!
+//! Openings themselves (`IfcFeatureElementSubtraction`) are not meshed as elements. An
+//! element's openings are its own and those of the elements it is a part of
+//! (`IfcRelAggregates`), as IfcOpenShell applies them.
+
+use glam::DAffine3;
+use poinav_ifc::{spatial, Entity, EntityId, Model};
+use rayon::prelude::*;
+
+use crate::error::{degenerate, GeomError};
+use crate::mesh::{ElementMesh, Mesh};
+use crate::placement::PlacementCache;
+use crate::representation_mesh::{subtract, ItemMesher, Part};
+use crate::surface_style::material_colour;
+
+/// Deepest aggregation whose openings are applied to its parts.
+const MAX_AGGREGATE_DEPTH: usize = 8;
+
+/// Most openings applied to one element.
+pub const MAX_OPENINGS: usize = 10_000;
+
+/// The meshes of a model.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct ModelMeshes {
+    /// Every element (`IfcElement` but openings) with a body, in file order.
+    pub elements: Vec<ElementMesh>,
+    /// Every `IfcSpace` with a body, in file order.
+    pub spaces: Vec<ElementMesh>,
+    /// Products whose geometry could not be made, in file order, with why.
+    pub failures: Vec<(EntityId, GeomError)>,
+}
+
+/// The products [`mesh_model`] meshes: elements other than openings, and spaces, that have a
+/// representation; in file order.
+pub fn meshed_products(model: &Model) -> Vec<Entity<'_>> {
+    let mut products: Vec<Entity<'_>> = model
+        .instances_of("IfcElement")
+        .into_iter()
+        .chain(model.instances_of("IfcSpace"))
+        .filter(|p| !p.is_a("IfcFeatureElementSubtraction"))
+        .filter(|p| p.get("Representation").is_some())
+        .collect();
+    products.sort_by_key(|p| p.position());
+    products
+}
+
+/// Meshes every element and space of `model` (see [`meshed_products`]) in parallel on the
+/// current rayon pool. The result is the same whatever the number of threads.
+pub fn mesh_model(model: &Model) -> ModelMeshes {
+    let products = meshed_products(model);
+    let results: Vec<(Entity<'_>, Result<ElementMesh, GeomError>)> = products
+        .par_iter()
+        .with_min_len(4)
+        .map_init(
+            || PlacementCache::new(model),
+            |cache, &p| (p, mesh_product(cache, p)),
+        )
+        .collect();
+    let mut out = ModelMeshes::default();
+    for (p, r) in results {
+        match r {
+            Ok(m) if p.is_a("IfcSpace") => out.spaces.push(m),
+            Ok(m) => out.elements.push(m),
+            Err(e) => out.failures.push((p.id(), e)),
+        }
+    }
+    out
+}
+
+/// The mesh of one product in world coordinates (metres), its openings subtracted, with its
+/// colour and storey. Errors name the `#id` at fault: no body representation, an unreadable
+/// placement, an item or opening that cannot be meshed, or a mesh with no triangles.
+pub fn mesh_product<'m>(
+    cache: &mut PlacementCache<'m>,
+    product: Entity<'m>,
+) -> Result<ElementMesh, GeomError> {
+    let placement = cache.product(product)?;
+    let rep = body_representation(product)?;
+    let mut mesher = ItemMesher::new(cache.units());
+    let mut parts = mesher.representation(rep)?;
+    let had_triangles = parts.iter().any(|p| !p.mesh.is_empty());
+    let openings = openings_of(product);
+    if !openings.is_empty() && parts.iter().any(|p| p.closed) {
+        if openings.len() > MAX_OPENINGS {
+            return Err(degenerate(
+                &product,
+                "more openings than one element may have",
+            ));
+        }
+        // Openings in the host's coordinates.
+        let to_host = placement.inverse();
+        let mut cutters: Vec<Part> = Vec::new();
+        for opening in openings {
+            let t: DAffine3 = to_host * cache.product(opening)?;
+            let rep = body_representation(opening)?;
+            let mut m = ItemMesher::new(cache.units());
+            for mut part in m.representation(rep)? {
+                part.mesh.transform(&t);
+                cutters.push(part);
+            }
+        }
+        parts = subtract(parts, &cutters)
+            .ok_or_else(|| degenerate(&product, "subtracting its openings failed"))?;
+    }
+    let mut mesh = Mesh::default();
+    for p in &parts {
+        mesh.append(&p.mesh);
+    }
+    mesh.transform(&placement);
+    if mesh.is_empty() {
+        return Err(GeomError::Empty {
+            id: product.id(),
+            class: product.type_name().to_string(),
+            reason: if had_triangles {
+                "its openings or clippings remove all of its body"
+            } else {
+                "its body holds no surfaces"
+            },
+        });
+    }
+    if !mesh.is_finite() {
+        return Err(degenerate(&rep, "coordinates overflow"));
+    }
+    let colour = mesher.colour.or_else(|| material_colour(product));
+    Ok(ElementMesh {
+        product: product.id(),
+        global_id: product.global_id().unwrap_or_default(),
+        class: product.type_name().to_string(),
+        name: product.name(),
+        storey: spatial::storey_of(product).map(|s| s.id()),
+        mesh,
+        color: colour,
+    })
+}
+
+/// Representation identifiers that never hold a body.
+const NOT_BODY: [&str; 8] = [
+    "Axis",
+    "FootPrint",
+    "Profile",
+    "Box",
+    "Annotation",
+    "Clearance",
+    "Reference",
+    "Lighting",
+];
+
+/// The `IfcShapeRepresentation` meshed for `product`: the one identified `Body`, else
+/// `Facetation`, else the first that is not identified as something else (axis, footprint,
+/// bounding box, ...).
+pub fn body_representation<'m>(product: Entity<'m>) -> Result<Entity<'m>, GeomError> {
+    let no_geometry = || GeomError::NoGeometry {
+        id: product.id(),
+        class: product.type_name().to_string(),
+    };
+    let shape = product.get_ref("Representation").ok_or_else(no_geometry)?;
+    let reps: Vec<(Entity<'m>, Option<String>)> = shape
+        .get_refs("Representations")
+        .into_iter()
+        .filter(|r| r.is_a("IfcShapeRepresentation"))
+        .map(|r| (r, r.get_str("RepresentationIdentifier")))
+        .collect();
+    let named = |name: &str| reps.iter().find(|(_, id)| id.as_deref() == Some(name));
+    named("Body")
+        .or_else(|| named("Facetation"))
+        .or_else(|| {
+            reps.iter()
+                .find(|(_, id)| id.as_deref().is_none_or(|i| !NOT_BODY.contains(&i)))
+        })
+        .map(|(r, _)| *r)
+        .ok_or_else(no_geometry)
+}
+
+/// The openings cut into `product`: its own and those of the elements it is part of.
+pub fn openings_of<'m>(product: Entity<'m>) -> Vec<Entity<'m>> {
+    let mut out = Vec::new();
+    let mut current = Some(product);
+    for _ in 0..MAX_AGGREGATE_DEPTH {
+        let Some(e) = current else { break };
+        out.extend(
+            e.inverse("HasOpenings")
+                .into_iter()
+                .filter_map(|rel| rel.get_ref("RelatedOpeningElement")),
+        );
+        current = e
+            .inverse("Decomposes")
+            .into_iter()
+            .filter(|r| r.is_a("IfcRelAggregates"))
+            .find_map(|r| r.get_ref("RelatingObject"))
+            .filter(|w| w.is_a("IfcElement"));
+    }
+    out.sort_by_key(|o| o.position());
+    out.dedup();
+    out
+}

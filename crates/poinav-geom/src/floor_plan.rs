@@ -1,0 +1,448 @@
+//! Storey floor plans: for each storey, the 2D regions (world XY metres) of everything it
+//! contains that a robot meets within a height band above the storey's floor, tagged with
+//! GlobalId, class and [`PlanItemKind`]. The input of navigation maps, the simulator and the
+//! SVG drawing.
+//!
+//! How each product is drawn:
+//! - its mesh ([`crate::mesh_model`], openings already cut) is cut by the band
+//!   ([`crate::section::mesh_section`], exact for solids);
+//! - stairs and ramps are drawn with their whole shadow ([`crate::section::mesh_shadow`]):
+//!   a wheeled robot must not enter a flight even where it passes high above the band;
+//! - a product whose mesh could not be made falls back on its footprint
+//!   ([`crate::footprint_of`]) when its z-range meets the band, less the footprints of its
+//!   openings that span its part of the band; the failure is listed in [`FloorPlan::problems`];
+//! - a door gives up to three items: its body's section inside the clear width
+//!   ([`PlanItemKind::DoorLeaf`]), outside it ([`PlanItemKind::DoorFrame`]), and its clear
+//!   passage ([`PlanItemKind::DoorOpening`], see [`DoorPassage`]).
+//!
+//! A product belongs to the storey [`poinav_ifc::spatial::storey_of`] finds; a model without
+//! storeys gets one plan for everything. Products that have no storey in a model with storeys
+//! go to the storey they stand on (the highest one at or below their lowest point).
+
+use glam::DVec2;
+use poinav_ifc::{spatial, Entity, EntityId, Model};
+use rayon::prelude::*;
+use rustc_hash::FxHashMap;
+use serde::{Deserialize, Serialize};
+
+use crate::door_passage::{door_passage, DoorPassage};
+use crate::element_mesh::{meshed_products, openings_of};
+use crate::error::GeomError;
+use crate::footprint::footprint_of;
+use crate::mesh::ElementMesh;
+use crate::placement::PlacementCache;
+use crate::plan_kind::{plan_kind, PlanItemKind};
+use crate::region::{self, Region};
+use crate::section::{mesh_section, mesh_shadow};
+use crate::{mesh_model, ModelMeshes};
+
+/// The height band of a plan, relative to the storey's elevation.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct PlanOptions {
+    /// Bottom of the band above the storey's floor, metres (0.05: above floor finishes and
+    /// thresholds).
+    pub band_min_m: f64,
+    /// Top of the band, metres: the robot's height (1.0 by default, which also shows desks and
+    /// tables; pass the robot profile's height for its navigation map).
+    pub band_max_m: f64,
+}
+
+impl Default for PlanOptions {
+    fn default() -> Self {
+        PlanOptions {
+            band_min_m: 0.05,
+            band_max_m: 1.0,
+        }
+    }
+}
+
+/// Where an item's regions come from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum PlanSource {
+    /// The section of its mesh by the band.
+    Section,
+    /// The projection of its whole mesh (stairs, ramps).
+    Shadow,
+    /// Its footprint (its mesh could not be made).
+    Footprint,
+    /// Its door passage (door openings).
+    Passage,
+}
+
+/// One product's regions of one kind.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PlanItem {
+    /// The product.
+    pub product: EntityId,
+    /// Its GlobalId.
+    pub global_id: String,
+    /// Its IFC class, schema spelling.
+    pub class: String,
+    /// Its Name.
+    pub name: Option<String>,
+    /// Its LongName (spaces).
+    pub long_name: Option<String>,
+    /// What it is in the plan.
+    pub kind: PlanItemKind,
+    /// Its regions, world XY metres.
+    pub regions: Vec<Region>,
+    /// Where they come from.
+    pub source: PlanSource,
+}
+
+impl PlanItem {
+    /// Total area, square metres.
+    pub fn area(&self) -> f64 {
+        region::total_area(&self.regions)
+    }
+}
+
+/// A product that could not be drawn as well as it should be.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PlanProblem {
+    /// The product.
+    pub product: EntityId,
+    /// Its GlobalId.
+    pub global_id: String,
+    /// Its class.
+    pub class: String,
+    /// What went wrong.
+    pub error: GeomError,
+    /// True when it is drawn anyway, from its footprint.
+    pub fell_back: bool,
+}
+
+/// The plan of one storey.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FloorPlan {
+    /// The storey (the building, or the project, in a model without storeys).
+    pub storey: EntityId,
+    /// Its Name.
+    pub storey_name: Option<String>,
+    /// Its GlobalId.
+    pub storey_global_id: Option<String>,
+    /// The z of its floor, world metres: the storey's placement, else its Elevation.
+    pub elevation_m: f64,
+    /// The band cut, world z metres.
+    pub band: (f64, f64),
+    /// Items in file order of their products (a door's frame, leaf and opening together).
+    pub items: Vec<PlanItem>,
+    /// The passages of its doors, in file order.
+    pub doors: Vec<DoorPassage>,
+    /// Products drawn from their footprint or not at all, and doors without a passage.
+    pub problems: Vec<PlanProblem>,
+    /// The box around every item (min, max); `None` for an empty plan.
+    pub bounds: Option<(DVec2, DVec2)>,
+}
+
+impl FloorPlan {
+    /// Items of `kind`.
+    pub fn items_of(&self, kind: PlanItemKind) -> impl Iterator<Item = &PlanItem> {
+        self.items.iter().filter(move |i| i.kind == kind)
+    }
+
+    /// Every obstacle region ([`PlanItemKind::is_obstacle`]).
+    pub fn obstacles(&self) -> impl Iterator<Item = &Region> {
+        self.items
+            .iter()
+            .filter(|i| i.kind.is_obstacle())
+            .flat_map(|i| i.regions.iter())
+    }
+
+    /// The free width through a door at its centre line: the length of the free stretch of
+    /// the line along the door through its centre, between the nearest obstacle regions either
+    /// side, searched up to `reach` metres out. What the walls and frames leave open.
+    pub fn free_width_at(&self, door: &DoorPassage, reach: f64) -> f64 {
+        let mut left = reach;
+        let mut right = reach;
+        for r in self.obstacles() {
+            for ring in r.rings() {
+                let n = ring.len();
+                for i in 0..n {
+                    let (a, b) = (ring[i], ring[(i + 1) % n]);
+                    if let Some(t) = line_hit(door.center, door.along, a, b) {
+                        if t >= 0.0 {
+                            right = right.min(t);
+                        }
+                        if t <= 0.0 {
+                            left = left.min(-t);
+                        }
+                    }
+                }
+            }
+            if r.contains(door.center) {
+                return 0.0;
+            }
+        }
+        left + right
+    }
+}
+
+/// Where the line `o + t * d` meets the segment `a`-`b`: `t`, if it does.
+fn line_hit(o: DVec2, d: DVec2, a: DVec2, b: DVec2) -> Option<f64> {
+    let e = b - a;
+    let denom = d.perp_dot(e);
+    if denom.abs() < 1e-15 {
+        return None;
+    }
+    let w = a - o;
+    let t = w.perp_dot(e) / denom;
+    let s = w.perp_dot(d) / denom;
+    (0.0..=1.0).contains(&s).then_some(t)
+}
+
+/// The floor plans of `model`, one per storey sorted by elevation; meshes every product first
+/// ([`mesh_model`]). Use [`floor_plans_with_meshes`] when the meshes are at hand.
+pub fn floor_plans(model: &Model, options: &PlanOptions) -> Vec<FloorPlan> {
+    floor_plans_with_meshes(model, &mesh_model(model), options)
+}
+
+/// The floor plans of `model` from its meshes (from [`mesh_model`]).
+pub fn floor_plans_with_meshes(
+    model: &Model,
+    meshes: &ModelMeshes,
+    options: &PlanOptions,
+) -> Vec<FloorPlan> {
+    let mut cache = PlacementCache::new(model);
+    let metres = cache.metres_per_unit();
+    let storeys = spatial::spatial_structure(model, &poinav_ifc::units::length_unit(model)).storeys;
+    let by_id: FxHashMap<EntityId, &ElementMesh> = meshes
+        .elements
+        .iter()
+        .chain(meshes.spaces.iter())
+        .map(|m| (m.product, m))
+        .collect();
+    let failures: FxHashMap<EntityId, &GeomError> =
+        meshes.failures.iter().map(|(id, e)| (*id, e)).collect();
+    let products = meshed_products(model);
+
+    // The storeys, with the z of their floors.
+    let mut levels: Vec<(Entity<'_>, f64)> = storeys
+        .iter()
+        .filter_map(|s| model.entity(s.id))
+        .map(|s| {
+            let z = cache
+                .product(s)
+                .map(|t| t.translation.z)
+                .ok()
+                .or_else(|| s.get_f64("Elevation").map(|e| e * metres))
+                .unwrap_or(0.0);
+            (s, z)
+        })
+        .collect();
+    let mut members: Vec<Vec<Entity<'_>>> = vec![Vec::new(); levels.len().max(1)];
+    if levels.is_empty() {
+        let whole = model
+            .instances_of("IfcBuilding")
+            .into_iter()
+            .next()
+            .or_else(|| model.instances_of("IfcProject").into_iter().next());
+        let z = whole
+            .and_then(|b| cache.product(b).ok())
+            .map_or(0.0, |t| t.translation.z);
+        if let Some(w) = whole {
+            levels.push((w, z));
+        }
+        members[0] = products.clone();
+    } else {
+        let index: FxHashMap<EntityId, usize> = levels
+            .iter()
+            .enumerate()
+            .map(|(i, (s, _))| (s.id(), i))
+            .collect();
+        for p in &products {
+            let at = spatial::storey_of(*p)
+                .and_then(|s| index.get(&s.id()).copied())
+                .or_else(|| {
+                    let low = by_id.get(&p.id())?.mesh.bounds()?.0.z;
+                    standing_on(&levels, low)
+                });
+            if let Some(i) = at {
+                members[i].push(*p);
+            }
+        }
+    }
+    levels
+        .iter()
+        .zip(members)
+        .map(|(&(storey, elevation), products)| {
+            let band = (
+                elevation + options.band_min_m,
+                elevation + options.band_max_m,
+            );
+            let drawn: Vec<Drawn> = products
+                .par_iter()
+                .with_min_len(4)
+                .map_init(
+                    || PlacementCache::new(model),
+                    |cache, &p| draw(cache, p, band, &by_id, &failures),
+                )
+                .collect();
+            let mut plan = FloorPlan {
+                storey: storey.id(),
+                storey_name: storey.name(),
+                storey_global_id: storey.global_id(),
+                elevation_m: elevation,
+                band,
+                items: Vec::new(),
+                doors: Vec::new(),
+                problems: Vec::new(),
+                bounds: None,
+            };
+            for d in drawn {
+                plan.items.extend(d.items);
+                plan.doors.extend(d.door);
+                plan.problems.extend(d.problems);
+            }
+            plan.bounds = region::bounds_of(plan.items.iter().flat_map(|i| i.regions.iter()));
+            plan
+        })
+        .collect()
+}
+
+/// The highest storey whose floor is at or below `z` (1 cm tolerance), else the lowest.
+fn standing_on(levels: &[(Entity<'_>, f64)], z: f64) -> Option<usize> {
+    let below = levels
+        .iter()
+        .enumerate()
+        .filter(|(_, (_, e))| *e <= z + 0.01)
+        .max_by(|a, b| a.1 .1.total_cmp(&b.1 .1))
+        .map(|(i, _)| i);
+    below.or_else(|| {
+        levels
+            .iter()
+            .enumerate()
+            .min_by(|a, b| a.1 .1.total_cmp(&b.1 .1))
+            .map(|(i, _)| i)
+    })
+}
+
+/// What one product adds to a plan.
+#[derive(Debug, Default)]
+struct Drawn {
+    items: Vec<PlanItem>,
+    door: Option<DoorPassage>,
+    problems: Vec<PlanProblem>,
+}
+
+fn draw<'m>(
+    cache: &mut PlacementCache<'m>,
+    product: Entity<'m>,
+    band: (f64, f64),
+    meshes: &FxHashMap<EntityId, &ElementMesh>,
+    failures: &FxHashMap<EntityId, &GeomError>,
+) -> Drawn {
+    let mut out = Drawn::default();
+    let Some(kind) = plan_kind(product) else {
+        return out;
+    };
+    let problem = |error: GeomError, fell_back: bool| PlanProblem {
+        product: product.id(),
+        global_id: product.global_id().unwrap_or_default(),
+        class: product.type_name().to_string(),
+        error,
+        fell_back,
+    };
+    let (regions, source) = match meshes.get(&product.id()) {
+        Some(m) if matches!(kind, PlanItemKind::Stair | PlanItemKind::Ramp) => {
+            (mesh_shadow(&m.mesh), PlanSource::Shadow)
+        }
+        Some(m) => (mesh_section(&m.mesh, band.0, band.1), PlanSource::Section),
+        None => {
+            let why = failures.get(&product.id()).map(|e| (*e).clone());
+            match footprint_regions(cache, product, band, kind) {
+                Ok(r) => {
+                    if let Some(e) = why {
+                        out.problems.push(problem(e, true));
+                    }
+                    (r, PlanSource::Footprint)
+                }
+                Err(e) => {
+                    out.problems.push(problem(why.unwrap_or(e), false));
+                    (Vec::new(), PlanSource::Footprint)
+                }
+            }
+        }
+    };
+    let item = |kind: PlanItemKind, regions: Vec<Region>, source: PlanSource| PlanItem {
+        product: product.id(),
+        global_id: product.global_id().unwrap_or_default(),
+        class: product.type_name().to_string(),
+        name: product.name(),
+        long_name: product.get_str("LongName"),
+        kind,
+        regions,
+        source,
+    };
+    if product.is_a("IfcDoor") {
+        match door_passage(cache, product) {
+            Ok(passage) => {
+                let reach = (passage.depth_m / 2.0).max(passage.clear_width_m) + 0.5;
+                let strip: Vec<Region> = passage.strip(reach).into_iter().collect();
+                let frame = region::difference(&regions, &strip);
+                let leaf = region::intersection(&regions, &strip);
+                if !frame.is_empty() {
+                    out.items.push(item(PlanItemKind::DoorFrame, frame, source));
+                }
+                if !leaf.is_empty() {
+                    out.items.push(item(PlanItemKind::DoorLeaf, leaf, source));
+                }
+                let opening: Vec<Region> = passage.passage().into_iter().collect();
+                // Openings that do not reach into the band (a hatch) are no passage here.
+                let (z0, z1) = passage.z_range;
+                if !opening.is_empty() && z0 <= band.1 && z1 >= band.0 {
+                    out.items.push(item(
+                        PlanItemKind::DoorOpening,
+                        opening,
+                        PlanSource::Passage,
+                    ));
+                    out.door = Some(passage);
+                }
+            }
+            Err(e) => {
+                out.problems.push(problem(e, !regions.is_empty()));
+                if !regions.is_empty() {
+                    out.items
+                        .push(item(PlanItemKind::DoorLeaf, regions, source));
+                }
+            }
+        }
+        return out;
+    }
+    if !regions.is_empty() {
+        out.items.push(item(kind, regions, source));
+    }
+    out
+}
+
+/// The footprint of a product as plan regions when its z-range meets the band (stairs and
+/// ramps whatever their height), less the footprints of its openings that span the heights
+/// at which the product is inside the band.
+fn footprint_regions<'m>(
+    cache: &mut PlacementCache<'m>,
+    product: Entity<'m>,
+    band: (f64, f64),
+    kind: PlanItemKind,
+) -> Result<Vec<Region>, GeomError> {
+    let f = footprint_of(cache, product)?.footprint;
+    let whole = matches!(kind, PlanItemKind::Stair | PlanItemKind::Ramp);
+    if !whole && (f.z_max < band.0 || f.z_min > band.1) {
+        return Ok(Vec::new());
+    }
+    let Some(outline) = Region::from_ring(f.polygon) else {
+        return Ok(Vec::new());
+    };
+    // An opening cuts where it spans the heights at which the product is inside the band.
+    let (lo, hi) = (band.0.max(f.z_min), band.1.min(f.z_max));
+    let mut cut = Vec::new();
+    for opening in openings_of(product) {
+        if let Ok(o) = footprint_of(cache, opening) {
+            let o = o.footprint;
+            if o.z_min <= lo + 1e-6 && o.z_max >= hi - 1e-6 {
+                cut.extend(Region::from_ring(o.polygon));
+            }
+        }
+    }
+    Ok(region::difference(&[outline], &cut))
+}

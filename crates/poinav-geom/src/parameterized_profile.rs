@@ -1,0 +1,379 @@
+//! `IfcParameterizedProfileDef`: rectangles (plain, rounded, hollow), circles (plain, hollow),
+//! ellipses, trapezia and the steel shapes I, L, T, U, C and Z, as polygons with holes in the
+//! profile's own coordinates (metres, before its `Position`).
+//!
+//! Shapes follow the IFC definitions (origin at the centre of the bounding box, as
+//! IfcOpenShell does). Rounded corners of rectangles are drawn as arcs; the fillet and edge
+//! radii of the steel shapes are left out (they change areas by well under 1 %).
+
+use std::f64::consts::{FRAC_PI_2, PI, TAU};
+
+use glam::DVec2;
+use poinav_ifc::Entity;
+
+use crate::curve::MAX_ARC_STEP;
+use crate::error::{degenerate, missing, unsupported, GeomError};
+
+/// A polygon with holes: counter-clockwise outer boundary and holes (any orientation), no
+/// repeated closing points.
+pub(crate) type Shape = (Vec<DVec2>, Vec<Vec<DVec2>>);
+
+/// The shape of a parameterized profile, lengths in metres (`s` metres per file unit).
+pub(crate) fn shape(profile: Entity<'_>, s: f64) -> Result<Shape, GeomError> {
+    let dim = |name: &'static str| -> Result<f64, GeomError> {
+        let v = profile
+            .get_f64(name)
+            .ok_or_else(|| missing(&profile, name))?;
+        if v.is_finite() && v > 0.0 {
+            Ok(v * s)
+        } else {
+            Err(degenerate(&profile, "dimension is not a positive number"))
+        }
+    };
+    // Optional dimensions: absent or zero is "none".
+    let opt = |name: &'static str| -> f64 {
+        profile
+            .get_f64(name)
+            .filter(|v| v.is_finite() && *v > 0.0)
+            .map_or(0.0, |v| v * s)
+    };
+    let thin = |outer: f64, t: f64| -> Result<(), GeomError> {
+        if t < outer {
+            Ok(())
+        } else {
+            Err(degenerate(&profile, "wall thicker than the profile"))
+        }
+    };
+    let p = |x: f64, y: f64| DVec2::new(x, y);
+    if profile.is_a("IfcRectangleHollowProfileDef") {
+        let (hx, hy) = (dim("XDim")? / 2.0, dim("YDim")? / 2.0);
+        let t = dim("WallThickness")?;
+        thin(hx.min(hy), t)?;
+        let outer = rounded_rectangle(hx, hy, opt("OuterFilletRadius"));
+        let inner = rounded_rectangle(hx - t, hy - t, opt("InnerFilletRadius"));
+        Ok((outer, vec![inner]))
+    } else if profile.is_a("IfcRoundedRectangleProfileDef") {
+        let (hx, hy) = (dim("XDim")? / 2.0, dim("YDim")? / 2.0);
+        Ok((rounded_rectangle(hx, hy, opt("RoundingRadius")), vec![]))
+    } else if profile.is_a("IfcRectangleProfileDef") {
+        let (hx, hy) = (dim("XDim")? / 2.0, dim("YDim")? / 2.0);
+        Ok((rounded_rectangle(hx, hy, 0.0), vec![]))
+    } else if profile.is_a("IfcCircleHollowProfileDef") {
+        let r = dim("Radius")?;
+        let t = dim("WallThickness")?;
+        thin(r, t)?;
+        Ok((ellipse(r, r), vec![ellipse(r - t, r - t)]))
+    } else if profile.is_a("IfcCircleProfileDef") {
+        let r = dim("Radius")?;
+        Ok((ellipse(r, r), vec![]))
+    } else if profile.is_a("IfcEllipseProfileDef") {
+        Ok((ellipse(dim("SemiAxis1")?, dim("SemiAxis2")?), vec![]))
+    } else if profile.is_a("IfcTrapeziumProfileDef") {
+        let (bottom, top, h) = (dim("BottomXDim")?, dim("TopXDim")?, dim("YDim")?);
+        let off = profile.get_f64("TopXOffset").unwrap_or(0.0) * s;
+        let (hb, hh) = (bottom / 2.0, h / 2.0);
+        Ok((
+            vec![
+                p(-hb, -hh),
+                p(hb, -hh),
+                p(-hb + off + top, hh),
+                p(-hb + off, hh),
+            ],
+            vec![],
+        ))
+    } else if profile.is_a("IfcAsymmetricIShapeProfileDef") {
+        // IFC4 names first, IFC2X3 names (OverallWidth = bottom flange) as the fallback.
+        let d = dim("OverallDepth")?;
+        let bw = dim("BottomFlangeWidth").or_else(|_| dim("OverallWidth"))?;
+        let bt = dim("BottomFlangeThickness").or_else(|_| dim("FlangeThickness"))?;
+        let tw = dim("TopFlangeWidth")?;
+        let tt = profile
+            .get_f64("TopFlangeThickness")
+            .filter(|v| *v > 0.0)
+            .map_or(bt, |v| v * s);
+        let wt = dim("WebThickness")?;
+        thin(d, bt + tt)?;
+        Ok((i_shape(d, bw, bt, tw, tt, wt), vec![]))
+    } else if profile.is_a("IfcIShapeProfileDef") {
+        let (w, d) = (dim("OverallWidth")?, dim("OverallDepth")?);
+        let (wt, ft) = (dim("WebThickness")?, dim("FlangeThickness")?);
+        thin(d, 2.0 * ft)?;
+        thin(w, wt)?;
+        Ok((i_shape(d, w, ft, w, ft, wt), vec![]))
+    } else if profile.is_a("IfcLShapeProfileDef") {
+        let d = dim("Depth")?;
+        let w = profile
+            .get_f64("Width")
+            .filter(|v| *v > 0.0)
+            .map_or(d, |v| v * s);
+        let t = dim("Thickness")?;
+        thin(w.min(d), t)?;
+        let (x, y) = (w / 2.0, d / 2.0);
+        Ok((
+            vec![
+                p(-x, -y),
+                p(x, -y),
+                p(x, -y + t),
+                p(-x + t, -y + t),
+                p(-x + t, y),
+                p(-x, y),
+            ],
+            vec![],
+        ))
+    } else if profile.is_a("IfcTShapeProfileDef") {
+        let (d, fw) = (dim("Depth")?, dim("FlangeWidth")?);
+        let (wt, ft) = (dim("WebThickness")?, dim("FlangeThickness")?);
+        thin(d, ft)?;
+        thin(fw, wt)?;
+        let (x, y, w) = (fw / 2.0, d / 2.0, wt / 2.0);
+        Ok((
+            vec![
+                p(-w, -y),
+                p(w, -y),
+                p(w, y - ft),
+                p(x, y - ft),
+                p(x, y),
+                p(-x, y),
+                p(-x, y - ft),
+                p(-w, y - ft),
+            ],
+            vec![],
+        ))
+    } else if profile.is_a("IfcUShapeProfileDef") {
+        let (d, fw) = (dim("Depth")?, dim("FlangeWidth")?);
+        let (wt, ft) = (dim("WebThickness")?, dim("FlangeThickness")?);
+        thin(d, 2.0 * ft)?;
+        thin(fw, wt)?;
+        let (x, y) = (fw / 2.0, d / 2.0);
+        Ok((
+            vec![
+                p(-x, -y),
+                p(x, -y),
+                p(x, -y + ft),
+                p(-x + wt, -y + ft),
+                p(-x + wt, y - ft),
+                p(x, y - ft),
+                p(x, y),
+                p(-x, y),
+            ],
+            vec![],
+        ))
+    } else if profile.is_a("IfcCShapeProfileDef") {
+        let (d, w) = (dim("Depth")?, dim("Width")?);
+        let t = dim("WallThickness")?;
+        let g = opt("Girth");
+        thin(w.min(d), 2.0 * t)?;
+        let (x, y) = (w / 2.0, d / 2.0);
+        let pts = if g > t {
+            vec![
+                p(-x, -y),
+                p(x, -y),
+                p(x, -y + g),
+                p(x - t, -y + g),
+                p(x - t, -y + t),
+                p(-x + t, -y + t),
+                p(-x + t, y - t),
+                p(x - t, y - t),
+                p(x - t, y - g),
+                p(x, y - g),
+                p(x, y),
+                p(-x, y),
+            ]
+        } else {
+            vec![
+                p(-x, -y),
+                p(x, -y),
+                p(x, -y + t),
+                p(-x + t, -y + t),
+                p(-x + t, y - t),
+                p(x, y - t),
+                p(x, y),
+                p(-x, y),
+            ]
+        };
+        Ok((pts, vec![]))
+    } else if profile.is_a("IfcZShapeProfileDef") {
+        let (d, fw) = (dim("Depth")?, dim("FlangeWidth")?);
+        let (wt, ft) = (dim("WebThickness")?, dim("FlangeThickness")?);
+        thin(d, 2.0 * ft)?;
+        let (y, w) = (d / 2.0, wt / 2.0);
+        Ok((
+            vec![
+                p(-fw + w, -y),
+                p(w, -y),
+                p(w, y - ft),
+                p(fw - w, y - ft),
+                p(fw - w, y),
+                p(-w, y),
+                p(-w, -y + ft),
+                p(-fw + w, -y + ft),
+            ],
+            vec![],
+        ))
+    } else {
+        Err(unsupported(&profile, "profile"))
+    }
+}
+
+/// An I shape of depth `d`: bottom flange `bw` x `bt`, top flange `tw` x `tt`, web `wt`.
+fn i_shape(d: f64, bw: f64, bt: f64, tw: f64, tt: f64, wt: f64) -> Vec<DVec2> {
+    let (y, w, b, t) = (d / 2.0, wt / 2.0, bw / 2.0, tw / 2.0);
+    [
+        (-b, -y),
+        (b, -y),
+        (b, -y + bt),
+        (w, -y + bt),
+        (w, y - tt),
+        (t, y - tt),
+        (t, y),
+        (-t, y),
+        (-t, y - tt),
+        (-w, y - tt),
+        (-w, -y + bt),
+        (-b, -y + bt),
+    ]
+    .iter()
+    .map(|&(x, y)| DVec2::new(x, y))
+    .collect()
+}
+
+/// A centred rectangle of half-sizes `hx`, `hy`, counter-clockwise, corners rounded with
+/// radius `r` (0: sharp) drawn as arcs.
+pub(crate) fn rounded_rectangle(hx: f64, hy: f64, r: f64) -> Vec<DVec2> {
+    let r = r.min(hx).min(hy);
+    if r <= 0.0 {
+        return vec![
+            DVec2::new(-hx, -hy),
+            DVec2::new(hx, -hy),
+            DVec2::new(hx, hy),
+            DVec2::new(-hx, hy),
+        ];
+    }
+    let n = ((FRAC_PI_2 / MAX_ARC_STEP).ceil() as usize).max(1);
+    let corners = [
+        (DVec2::new(hx - r, -hy + r), -FRAC_PI_2),
+        (DVec2::new(hx - r, hy - r), 0.0),
+        (DVec2::new(-hx + r, hy - r), FRAC_PI_2),
+        (DVec2::new(-hx + r, -hy + r), PI),
+    ];
+    let mut out = Vec::with_capacity(4 * (n + 1));
+    for (c, start) in corners {
+        for i in 0..=n {
+            let a = start + FRAC_PI_2 * i as f64 / n as f64;
+            out.push(c + r * DVec2::from_angle(a));
+        }
+    }
+    out
+}
+
+/// An ellipse with semi-axes `a` (x) and `b` (y), as 72 chords, counter-clockwise.
+pub(crate) fn ellipse(a: f64, b: f64) -> Vec<DVec2> {
+    let n = (TAU / MAX_ARC_STEP).round() as usize;
+    (0..n)
+        .map(|i| {
+            let t = TAU * i as f64 / n as f64;
+            DVec2::new(a * t.cos(), b * t.sin())
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::polygon::{bounds, clean, signed_area};
+    use poinav_ifc::{EntityId, Model};
+
+    /// Area (outer less holes) and bounding box of profile `#id` in a metre model.
+    fn measure(data: &str, id: u64) -> (f64, DVec2, DVec2) {
+        let text = format!(
+            "ISO-10303-21;HEADER;FILE_SCHEMA(('IFC4'));ENDSEC;DATA;\n{data}\nENDSEC;END-ISO-10303-21;"
+        );
+        let m = Model::from_bytes("t.ifc", text.into_bytes()).unwrap();
+        let (outer, holes) = shape(m.entity(EntityId(id)).unwrap(), 1.0).unwrap();
+        let outer = clean(outer).expect("a simple outer boundary");
+        let holes: f64 = holes.iter().map(|h| signed_area(h).abs()).sum();
+        let (lo, hi) = bounds(&outer);
+        (signed_area(&outer) - holes, lo, hi)
+    }
+
+    #[test]
+    fn steel_shapes_and_hollow_profiles_have_their_areas() {
+        let cases = [
+            // I: two 0.2 x 0.02 flanges and a 0.26 x 0.01 web.
+            (
+                "IFCISHAPEPROFILEDEF(.AREA.,$,$,0.2,0.3,0.01,0.02,$,$,$)",
+                2.0 * 0.004 + 0.0026,
+                0.2,
+                0.3,
+            ),
+            // L: 0.1 x 0.15, 0.01 thick.
+            (
+                "IFCLSHAPEPROFILEDEF(.AREA.,$,$,0.15,0.1,0.01,$,$,$)",
+                0.001 + 0.0014,
+                0.1,
+                0.15,
+            ),
+            // T: 0.2 flange x 0.02, web 0.01 over the remaining 0.28.
+            (
+                "IFCTSHAPEPROFILEDEF(.AREA.,$,$,0.3,0.2,0.01,0.02,$,$,$,$,$)",
+                0.004 + 0.0028,
+                0.2,
+                0.3,
+            ),
+            // U: 0.1 flanges x 0.02 (twice), web 0.01 over the remaining 0.26.
+            (
+                "IFCUSHAPEPROFILEDEF(.AREA.,$,$,0.3,0.1,0.01,0.02,$,$,$)",
+                0.004 + 0.0026,
+                0.1,
+                0.3,
+            ),
+            // C: 0.1 x 0.2, 0.005 wall, 0.02 lips: perimeter strips 2 (0.1 + 0.2) - 4 t, lips.
+            (
+                "IFCCSHAPEPROFILEDEF(.AREA.,$,$,0.2,0.1,0.005,0.02,$)",
+                0.005 * (0.2 + 2.0 * 0.1 + 2.0 * 0.02) - 4.0 * 0.005 * 0.005,
+                0.1,
+                0.2,
+            ),
+            // Z: web 0.01 x 0.3 and two flanges 0.1 (from the web's far face) x 0.02.
+            (
+                "IFCZSHAPEPROFILEDEF(.AREA.,$,$,0.3,0.1,0.01,0.02,$,$)",
+                0.01 * 0.26 + 2.0 * 0.1 * 0.02,
+                0.19,
+                0.3,
+            ),
+            (
+                "IFCRECTANGLEHOLLOWPROFILEDEF(.AREA.,$,$,0.2,0.1,0.01,$,$)",
+                0.02 - 0.18 * 0.08,
+                0.2,
+                0.1,
+            ),
+            (
+                "IFCTRAPEZIUMPROFILEDEF(.AREA.,$,$,2.,1.,1.,0.5)",
+                1.5,
+                2.0,
+                1.0,
+            ),
+        ];
+        for (profile, area, w, h) in cases {
+            let (a, lo, hi) = measure(&format!("#1={profile};"), 1);
+            assert!((a - area).abs() < 1e-12, "{profile}: {a} vs {area}");
+            assert!(
+                ((hi - lo) - DVec2::new(w, h)).length() < 1e-12,
+                "{profile}: {lo} {hi}"
+            );
+        }
+        // Curved ones, as chords: a hollow circle and a rounded rectangle.
+        let (a, _, _) = measure("#1=IFCCIRCLEHOLLOWPROFILEDEF(.AREA.,$,$,0.5,0.1);", 1);
+        assert!(
+            (a - std::f64::consts::PI * (0.25 - 0.16)).abs() < 0.002,
+            "{a}"
+        );
+        let (a, lo, hi) = measure(
+            "#1=IFCROUNDEDRECTANGLEPROFILEDEF(.AREA.,$,$,2.,1.,0.25);",
+            1,
+        );
+        let exact = 2.0 - (4.0 - std::f64::consts::PI) * 0.0625;
+        assert!((a - exact).abs() < 0.001, "{a} vs {exact}");
+        assert!(((hi - lo) - DVec2::new(2.0, 1.0)).length() < 1e-12);
+    }
+}

@@ -1,0 +1,413 @@
+//! The items of an `IfcShapeRepresentation` as triangle meshes in the representation's
+//! coordinates (metres): extrusions, faceted breps, surface models, tessellated face sets,
+//! boxes and CSG primitives, boolean results (clipping by half-spaces, differences, unions
+//! and intersections of solids) and mapped items (nested, with any
+//! `IfcCartesianTransformationOperator`, mirrored or non-uniformly scaled).
+//!
+//! Work is bounded: at most [`MAX_ITEMS`] items and [`MAX_TRIANGLES`] triangles per
+//! representation, mapped items nested at most [`MAX_DEPTH`] deep, boolean chains at most
+//! [`MAX_BOOLEAN_CHAIN`] long; past that the representation is an error.
+
+use glam::{DAffine3, DVec2, DVec3};
+use poinav_ifc::Entity;
+
+use crate::axis2_placement::{axis2placement, axis2placement_3d};
+use crate::boolean::{boxes_overlap, clip, Solid};
+use crate::brep::face_mesh;
+use crate::cartesian_point::point3;
+use crate::cartesian_transformation_operator::transformation;
+use crate::error::{degenerate, missing, required_ref, unsupported, GeomError};
+use crate::extrusion::{extrude, extruded_area_solid};
+use crate::face_set::face_set_mesh;
+use crate::half_space::half_space;
+use crate::mesh::Mesh;
+use crate::parameterized_profile::ellipse;
+use crate::profile::ProfileArea;
+use crate::surface_style::item_colour;
+use crate::unit_assignment::Units;
+
+/// Deepest nesting of mapped items, CSG trees and boolean operands followed.
+pub const MAX_DEPTH: usize = 16;
+
+/// Longest chain of boolean results (each the first operand of the next) followed.
+pub const MAX_BOOLEAN_CHAIN: usize = 4096;
+
+/// Most representation items evaluated for one representation (mapped items count once per
+/// use).
+pub const MAX_ITEMS: usize = 100_000;
+
+/// Most triangles one representation may produce.
+pub const MAX_TRIANGLES: usize = 4_000_000;
+
+/// One piece of geometry: a mesh, and whether it encloses a volume (booleans apply to those).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Part {
+    /// The triangles.
+    pub mesh: Mesh,
+    /// True for solids (extrusions, breps, closed face sets, boolean results).
+    pub closed: bool,
+}
+
+impl Part {
+    fn transformed(mut self, t: &DAffine3) -> Part {
+        self.mesh.transform(t);
+        self
+    }
+}
+
+/// Evaluates representation items into [`Part`]s, within the limits, noting the first
+/// surface colour met.
+#[derive(Debug)]
+pub struct ItemMesher {
+    units: Units,
+    items: usize,
+    triangles: usize,
+    /// The colour of the first styled item met outside boolean second operands.
+    pub colour: Option<[f32; 4]>,
+    look_for_colour: bool,
+}
+
+impl ItemMesher {
+    /// A mesher converting lengths with `units`.
+    pub fn new(units: Units) -> ItemMesher {
+        ItemMesher {
+            units,
+            items: 0,
+            triangles: 0,
+            colour: None,
+            look_for_colour: true,
+        }
+    }
+
+    /// The parts of every item of `representation`. Items without surfaces (curves, points,
+    /// text) are passed over; an item that cannot be meshed is an error for the whole.
+    pub fn representation(&mut self, representation: Entity<'_>) -> Result<Vec<Part>, GeomError> {
+        let mut out = Vec::new();
+        for item in representation.get_refs("Items") {
+            out.extend(self.item(item, 0)?);
+        }
+        Ok(out)
+    }
+
+    fn count(&mut self, e: &Entity<'_>, triangles: usize) -> Result<(), GeomError> {
+        self.triangles += triangles;
+        if self.triangles > MAX_TRIANGLES {
+            return Err(degenerate(e, "more triangles than one product may have"));
+        }
+        Ok(())
+    }
+
+    fn leaf(&mut self, e: &Entity<'_>, mesh: Mesh, closed: bool) -> Result<Vec<Part>, GeomError> {
+        self.count(e, mesh.triangles.len())?;
+        if !mesh.is_finite() {
+            return Err(degenerate(e, "coordinates overflow"));
+        }
+        Ok(vec![Part { mesh, closed }])
+    }
+
+    /// The parts of one item, in the coordinates of the representation holding it.
+    pub fn item(&mut self, item: Entity<'_>, depth: usize) -> Result<Vec<Part>, GeomError> {
+        if depth > MAX_DEPTH {
+            return Err(degenerate(
+                &item,
+                "mapped items or booleans nested too deeply",
+            ));
+        }
+        self.items += 1;
+        if self.items > MAX_ITEMS {
+            return Err(degenerate(&item, "more items than one product may have"));
+        }
+        if self.look_for_colour && self.colour.is_none() {
+            self.colour = item_colour(item);
+        }
+        let s = self.units.metres_per_unit;
+        if item.is_a("IfcMappedItem") {
+            let source = required_ref(&item, "MappingSource", "IfcRepresentationMap")?;
+            let origin = source
+                .get_ref("MappingOrigin")
+                .ok_or_else(|| missing(&source, "MappingOrigin"))?;
+            let origin = axis2placement(origin, s)?;
+            let target =
+                required_ref(&item, "MappingTarget", "IfcCartesianTransformationOperator")?;
+            let t = transformation(target, s)? * origin;
+            let rep = required_ref(&source, "MappedRepresentation", "IfcRepresentation")?;
+            let mut out = Vec::new();
+            for sub in rep.get_refs("Items") {
+                out.extend(
+                    self.item(sub, depth + 1)?
+                        .into_iter()
+                        .map(|p| p.transformed(&t)),
+                );
+            }
+            Ok(out)
+        } else if item.is_a("IfcBooleanResult") {
+            self.boolean(item, depth)
+        } else if item.is_a("IfcCsgSolid") {
+            let root = item
+                .get_ref("TreeRootExpression")
+                .ok_or_else(|| missing(&item, "TreeRootExpression"))?;
+            self.item(root, depth + 1)
+        } else if item.is_a("IfcExtrudedAreaSolid") {
+            if item.is_a("IfcExtrudedAreaSolidTapered") {
+                return Err(unsupported(&item, "tapered extrusion"));
+            }
+            let mesh = extruded_area_solid(item, &self.units)?;
+            self.leaf(&item, mesh, true)
+        } else if item.is_a("IfcManifoldSolidBrep")
+            || item.is_a("IfcFaceBasedSurfaceModel")
+            || item.is_a("IfcShellBasedSurfaceModel")
+        {
+            let (mesh, solid) = face_mesh(item, s)?;
+            self.leaf(&item, mesh, solid)
+        } else if item.is_a("IfcTessellatedFaceSet") {
+            let (mesh, closed) = face_set_mesh(item, s)?;
+            self.leaf(&item, mesh, closed)
+        } else if item.is_a("IfcBoundingBox") {
+            let corner = point3(required_ref(&item, "Corner", "IfcCartesianPoint")?)? * s;
+            let size = self.size(&item, ["XDim", "YDim", "ZDim"])?;
+            let mesh = cuboid(corner, size);
+            self.leaf(&item, mesh, true)
+        } else if item.is_a("IfcBlock") {
+            let size = self.size(&item, ["XLength", "YLength", "ZLength"])?;
+            let mut mesh = cuboid(DVec3::ZERO, size);
+            mesh.transform(&self.position(&item)?);
+            self.leaf(&item, mesh, true)
+        } else if item.is_a("IfcRightCircularCylinder") {
+            let [h, r] = self.lengths(&item, ["Height", "Radius"])?;
+            let area = ProfileArea {
+                outer: ellipse(r, r),
+                holes: Vec::new(),
+            };
+            let mut mesh = extrude(&[area], DVec3::Z * h)
+                .ok_or_else(|| degenerate(&item, "cylinder cannot be meshed"))?;
+            mesh.transform(&self.position(&item)?);
+            self.leaf(&item, mesh, true)
+        } else if item.is_a("IfcCurve")
+            || item.is_a("IfcPoint")
+            || item.is_a("IfcGeometricSet")
+            || item.is_a("IfcAnnotationFillArea")
+            || item.is_a("IfcTextLiteral")
+            || item.is_a("IfcPlacement")
+            || item.is_a("IfcVector")
+            || item.is_a("IfcDirection")
+            || item.is_a("IfcCartesianPointList")
+        {
+            Ok(Vec::new())
+        } else {
+            Err(unsupported(&item, "representation item"))
+        }
+    }
+
+    fn lengths<const N: usize>(
+        &self,
+        e: &Entity<'_>,
+        names: [&'static str; N],
+    ) -> Result<[f64; N], GeomError> {
+        let mut out = [0.0; N];
+        for (o, name) in out.iter_mut().zip(names) {
+            let v = e.get_f64(name).ok_or_else(|| missing(e, name))?;
+            if !(v.is_finite() && v > 0.0) {
+                return Err(degenerate(e, "dimension is not a positive number"));
+            }
+            *o = v * self.units.metres_per_unit;
+        }
+        Ok(out)
+    }
+
+    fn size(&self, e: &Entity<'_>, names: [&'static str; 3]) -> Result<DVec3, GeomError> {
+        Ok(DVec3::from_array(self.lengths(e, names)?))
+    }
+
+    /// The `Position` of a CSG primitive (the identity when `$`).
+    fn position(&self, e: &Entity<'_>) -> Result<DAffine3, GeomError> {
+        match e.get("Position") {
+            None => Ok(DAffine3::IDENTITY),
+            Some(_) => axis2placement_3d(
+                e.get_ref("Position")
+                    .ok_or_else(|| missing(e, "Position"))?,
+                self.units.metres_per_unit,
+            ),
+        }
+    }
+
+    /// An operand's parts without looking for colours (cutters do not colour the result).
+    fn operand(&mut self, e: Entity<'_>, depth: usize) -> Result<Vec<Part>, GeomError> {
+        let look = std::mem::replace(&mut self.look_for_colour, false);
+        let r = self.item(e, depth);
+        self.look_for_colour = look;
+        r
+    }
+
+    /// A boolean result; chains `((A op B) op C) ...` are followed in a loop.
+    fn boolean(&mut self, item: Entity<'_>, depth: usize) -> Result<Vec<Part>, GeomError> {
+        let mut chain = Vec::new();
+        let mut current = item;
+        while current.is_a("IfcBooleanResult") {
+            if chain.len() >= MAX_BOOLEAN_CHAIN {
+                return Err(degenerate(&item, "boolean results nested too deeply"));
+            }
+            chain.push(current);
+            current = current
+                .get_ref("FirstOperand")
+                .ok_or_else(|| missing(&current, "FirstOperand"))?;
+        }
+        let mut parts = self.item(current, depth + 1)?;
+        for b in chain.into_iter().rev() {
+            let second = b
+                .get_ref("SecondOperand")
+                .ok_or_else(|| missing(&b, "SecondOperand"))?;
+            let op = b.get("Operator").and_then(|v| v.as_enum()).unwrap_or("");
+            parts = if second.is_a("IfcHalfSpaceSolid") {
+                let mut hs = half_space(second, &self.units)?;
+                match op {
+                    "DIFFERENCE" => {}
+                    "INTERSECTION" if hs.prism.is_none() => hs.outward = -hs.outward,
+                    _ => return Err(unsupported(&b, "this operation with a half-space")),
+                }
+                let mut out = Vec::with_capacity(parts.len());
+                for p in parts {
+                    let mesh = clip(&p.mesh, &hs)
+                        .ok_or_else(|| degenerate(&b, "clipping by a half-space failed"))?;
+                    self.count(&b, mesh.triangles.len())?;
+                    out.push(Part {
+                        mesh,
+                        closed: p.closed,
+                    });
+                }
+                out
+            } else {
+                let others = self.operand(second, depth + 1)?;
+                match op {
+                    "DIFFERENCE" => subtract(parts, &others)
+                        .ok_or_else(|| degenerate(&b, "boolean difference failed"))?,
+                    "UNION" => {
+                        parts.extend(others);
+                        parts
+                    }
+                    "INTERSECTION" => intersect(parts, &others)
+                        .ok_or_else(|| degenerate(&b, "boolean intersection failed"))?,
+                    _ => return Err(missing(&b, "Operator")),
+                }
+            };
+            let n = parts.iter().map(|p| p.mesh.triangles.len()).sum();
+            self.count(&b, n)?;
+        }
+        Ok(parts)
+    }
+}
+
+/// How far cutters are grown on every side before they are subtracted, metres (10 µm).
+pub const CUTTER_MARGIN: f64 = 1e-5;
+
+/// `mesh` scaled about the centre of its box so that the box grows by `margin` on every side.
+fn grow(mesh: &Mesh, margin: f64) -> Option<Mesh> {
+    let (lo, hi) = mesh.bounds()?;
+    let centre = (lo + hi) / 2.0;
+    let half = ((hi - lo) / 2.0).max(DVec3::splat(margin));
+    let scale = (half + margin) / half;
+    let t = DAffine3::from_translation(centre)
+        * DAffine3::from_scale(scale)
+        * DAffine3::from_translation(-centre);
+    let mut m = mesh.clone();
+    m.transform(&t);
+    Some(m)
+}
+
+/// Every closed part of `parts` less every closed part of `cutters` that can touch it; open
+/// parts are kept as they are. `None` when the boolean library fails.
+///
+/// Each cutter is first grown by [`CUTTER_MARGIN`] on every side (scaled about the centre of
+/// its box), so that faces of a cutter lying exactly in faces of the part (an opening as deep
+/// as its wall is thick, a door opening flush with the wall's foot) cut through cleanly
+/// instead of leaving zero-thickness skins.
+pub fn subtract(parts: Vec<Part>, cutters: &[Part]) -> Option<Vec<Part>> {
+    let cutters: Vec<(Part, (DVec3, DVec3))> = cutters
+        .iter()
+        .filter(|c| c.closed)
+        .filter_map(|c| {
+            let grown = grow(&c.mesh, CUTTER_MARGIN)?;
+            let bounds = grown.bounds()?;
+            Some((
+                Part {
+                    mesh: grown,
+                    closed: true,
+                },
+                bounds,
+            ))
+        })
+        .collect();
+    let mut solids: Vec<Option<Option<Solid>>> = vec![None; cutters.len()];
+    let mut out = Vec::with_capacity(parts.len());
+    for part in parts {
+        let Some(bounds) = part.mesh.bounds() else {
+            continue;
+        };
+        let margin = 1e-9 * (bounds.1 - bounds.0).length().max(1.0);
+        let touching: Vec<usize> = (0..cutters.len())
+            .filter(|&i| boxes_overlap(bounds, cutters[i].1, margin))
+            .collect();
+        if !part.closed || touching.is_empty() {
+            out.push(part);
+            continue;
+        }
+        let Some(mut solid) = Solid::new(&part.mesh) else {
+            out.push(part);
+            continue;
+        };
+        for i in touching {
+            let cutter = solids[i].get_or_insert_with(|| Solid::new(&cutters[i].0.mesh));
+            if let Some(c) = cutter {
+                solid = solid.difference(c)?;
+            }
+        }
+        if !solid.is_empty() {
+            out.push(Part {
+                mesh: solid.mesh(),
+                closed: true,
+            });
+        }
+    }
+    Some(out)
+}
+
+/// What the closed parts of `parts` share with the union of the closed parts of `others`.
+fn intersect(parts: Vec<Part>, others: &[Part]) -> Option<Vec<Part>> {
+    let mut union: Option<Solid> = None;
+    for o in others.iter().filter(|o| o.closed) {
+        let s = Solid::new(&o.mesh)?;
+        union = Some(match union {
+            None => s,
+            Some(u) => u.union(&s)?,
+        });
+    }
+    let Some(union) = union else {
+        return Some(Vec::new());
+    };
+    let mut out = Vec::new();
+    for p in parts.into_iter().filter(|p| p.closed) {
+        let r = Solid::new(&p.mesh)?.intersection(&union)?;
+        if !r.is_empty() {
+            out.push(Part {
+                mesh: r.mesh(),
+                closed: true,
+            });
+        }
+    }
+    Some(out)
+}
+
+/// A box from `corner` spanning `size`, triangles facing out.
+fn cuboid(corner: DVec3, size: DVec3) -> Mesh {
+    let area = ProfileArea {
+        outer: vec![
+            DVec2::ZERO,
+            DVec2::new(size.x, 0.0),
+            DVec2::new(size.x, size.y),
+            DVec2::new(0.0, size.y),
+        ],
+        holes: Vec::new(),
+    };
+    let mut m = extrude(&[area], DVec3::Z * size.z).unwrap_or_default();
+    m.transform(&DAffine3::from_translation(corner));
+    m
+}

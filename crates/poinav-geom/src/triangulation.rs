@@ -1,0 +1,151 @@
+//! Triangulation of plane polygons with holes (ear clipping by `earcutr`): profile caps in 2D
+//! and polygonal faces in 3D (projected on their best-fitting plane, Newell's normal).
+
+use glam::{DVec2, DVec3};
+
+/// Most points one polygon (outer boundary and holes together) may have.
+pub const MAX_POLYGON_POINTS: usize = 1 << 20;
+
+/// Triangles of the polygon `outer` with `holes`, as indices into the points of `outer`
+/// followed by those of each hole, counter-clockwise in the plane. `None` when the polygon
+/// cannot be triangulated (fewer than three points, too many points, or a numeric failure).
+pub fn triangulate_2d(outer: &[DVec2], holes: &[Vec<DVec2>]) -> Option<Vec<[u32; 3]>> {
+    let n = outer.len() + holes.iter().map(Vec::len).sum::<usize>();
+    if outer.len() < 3 || n > MAX_POLYGON_POINTS {
+        return None;
+    }
+    let points: Vec<DVec2> = outer
+        .iter()
+        .chain(holes.iter().flatten())
+        .copied()
+        .collect();
+    if outer.len() == 3 && holes.is_empty() {
+        return Some(vec![ccw(&points, [0, 1, 2])]);
+    }
+    if outer.len() == 4 && holes.is_empty() && convex_quad(outer) {
+        return Some(vec![ccw(&points, [0, 1, 2]), ccw(&points, [0, 2, 3])]);
+    }
+    // Shift to the first point: large coordinates lose no precision.
+    let o = points[0];
+    let mut flat = Vec::with_capacity(2 * n);
+    for p in &points {
+        flat.push(p.x - o.x);
+        flat.push(p.y - o.y);
+    }
+    let mut starts = Vec::with_capacity(holes.len());
+    let mut at = outer.len();
+    for h in holes.iter().filter(|h| !h.is_empty()) {
+        starts.push(at);
+        at += h.len();
+    }
+    let indices = earcutr::earcut(&flat, &starts, 2).ok()?;
+    Some(
+        indices
+            .chunks_exact(3)
+            .map(|t| ccw(&points, [t[0] as u32, t[1] as u32, t[2] as u32]))
+            .collect(),
+    )
+}
+
+/// The triangle with its corners ordered counter-clockwise.
+fn ccw(points: &[DVec2], t: [u32; 3]) -> [u32; 3] {
+    let [a, b, c] = t.map(|i| points[i as usize]);
+    if (b - a).perp_dot(c - a) < 0.0 {
+        [t[0], t[2], t[1]]
+    } else {
+        t
+    }
+}
+
+/// True when the quadrilateral turns the same way at every corner.
+fn convex_quad(q: &[DVec2]) -> bool {
+    let turn = |i: usize| (q[(i + 1) % 4] - q[i]).perp_dot(q[(i + 2) % 4] - q[(i + 1) % 4]);
+    let t: Vec<f64> = (0..4).map(turn).collect();
+    t.iter().all(|&x| x > 0.0) || t.iter().all(|&x| x < 0.0)
+}
+
+/// Newell's normal of a closed 3D polygon (not normalised; its length is twice the area).
+pub fn newell_normal(points: &[DVec3]) -> DVec3 {
+    let Some(&o) = points.first() else {
+        return DVec3::ZERO;
+    };
+    let n = points.len();
+    (0..n)
+        .map(|i| (points[i] - o).cross(points[(i + 1) % n] - o))
+        .sum()
+}
+
+/// Triangles of a plane 3D polygon `outer` with `holes` (indices as in [`triangulate_2d`]),
+/// facing the side its outer boundary turns counter-clockwise around (Newell's normal).
+/// `None` when the polygon has no area or cannot be triangulated.
+pub fn triangulate_3d(outer: &[DVec3], holes: &[Vec<DVec3>]) -> Option<Vec<[u32; 3]>> {
+    let normal = newell_normal(outer).try_normalize()?;
+    if outer.len() == 3 && holes.is_empty() {
+        return Some(vec![[0, 1, 2]]);
+    }
+    // A right-handed frame (u, v, normal): counter-clockwise in (u, v) faces the normal.
+    let u = normal.any_orthonormal_vector();
+    let v = normal.cross(u);
+    let project = |p: &DVec3| DVec2::new(p.dot(u), p.dot(v));
+    let outer2: Vec<DVec2> = outer.iter().map(project).collect();
+    let holes2: Vec<Vec<DVec2>> = holes
+        .iter()
+        .map(|h| h.iter().map(project).collect())
+        .collect();
+    triangulate_2d(&outer2, &holes2)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn area(points: &[DVec2], tris: &[[u32; 3]]) -> f64 {
+        tris.iter()
+            .map(|t| {
+                let [a, b, c] = t.map(|i| points[i as usize]);
+                (b - a).perp_dot(c - a) / 2.0
+            })
+            .sum()
+    }
+
+    #[test]
+    fn square_with_a_square_hole() {
+        let outer = vec![
+            DVec2::new(0.0, 0.0),
+            DVec2::new(4.0, 0.0),
+            DVec2::new(4.0, 4.0),
+            DVec2::new(0.0, 4.0),
+        ];
+        let hole = vec![
+            DVec2::new(1.0, 1.0),
+            DVec2::new(1.0, 2.0),
+            DVec2::new(2.0, 2.0),
+            DVec2::new(2.0, 1.0),
+        ];
+        let tris = triangulate_2d(&outer, std::slice::from_ref(&hole)).unwrap();
+        let all: Vec<DVec2> = outer.iter().chain(&hole).copied().collect();
+        assert_eq!(tris.len(), 8);
+        assert!((area(&all, &tris) - 15.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn face_in_3d_faces_its_newell_normal() {
+        // An L-shaped face in the plane x = 5, turning counter-clockwise seen from +x.
+        let pts: Vec<DVec3> = [(0., 0.), (2., 0.), (2., 1.), (1., 1.), (1., 2.), (0., 2.)]
+            .iter()
+            .map(|&(y, z)| DVec3::new(5.0, y, z))
+            .collect();
+        let tris = triangulate_3d(&pts, &[]).unwrap();
+        assert_eq!(tris.len(), 4);
+        let mut normal = DVec3::ZERO;
+        for t in tris {
+            let [a, b, c] = t.map(|i| pts[i as usize]);
+            normal += (b - a).cross(c - a) / 2.0;
+        }
+        assert!(
+            (normal - DVec3::new(3.0, 0.0, 0.0)).length() < 1e-12,
+            "{normal}"
+        );
+        assert!(triangulate_3d(&pts[..2], &[]).is_none());
+    }
+}

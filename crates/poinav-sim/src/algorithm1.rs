@@ -1,0 +1,702 @@
+//! Algorithm 1 of the paper (SPEC.md §5), per control step and robot: every element a ray hits
+//! or looks through is looked up in the POI database by GlobalId, its roles (primary and
+//! conditional) select behaviours, and the behaviours shape the controller's command into one
+//! navigation action:
+//!
+//! - keep the profile's clearance: the speed is capped so the robot can stop `margin`
+//!   before an A-1 element (or robot) in its path; a side closer than the margin steers away.
+//! - estimate the door's clear width from the rays themselves ([`Estimator`]) and apply
+//!   rule R5 (below MinClearanceWidth: B-2 + RESTRICTED, else FULL_ACCESS, SENSOR_BASED); pass
+//!   at a controlled speed, lower with B-2.
+//! - C-1: a robot detected by a ray is tracked (its shared pose gives the centre distance);
+//!   closer than the zone's MinInterRobotSeparation the robot takes C-2 and runs the zone's
+//!   CoordinationProtocol; an oncoming robot makes both keep to their right-hand wall.
+//! - the +90/-90 ray hits on A-3 elements are the trajectory references of wall following.
+//! - B-1 zones cap the speed.
+
+use glam::DVec2;
+use poinav_nav::Floor;
+use poinav_poi::runtime::{Observation, RuntimeChange};
+use poinav_poi::{CoordinationProtocol, Role};
+use serde::Deserialize;
+
+use crate::controller::{Command, Side, WallPd};
+use crate::events::{Event, EventKind};
+use crate::geometry::{point_in_ring, wrap_angle};
+use crate::poi_db::{Element, PoiDb, RoleSet};
+use crate::robot::Robot;
+use crate::route::NavGraph;
+use crate::sensor::{Reading, FRONT, LEFT, LEFT30, RANGE_M, RIGHT, RIGHT30};
+use crate::world::Target;
+
+/// Tunable behaviour constants (scenario table `[behaviour]`); defaults are documented in
+/// docs/scenarios.md.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Behaviour {
+    /// Speed through an A-2 element, fraction of the top speed.
+    pub transition_speed_factor: f64,
+    /// Speed through an A-2 element with B-2, fraction of the top speed.
+    pub narrow_speed_factor: f64,
+    /// Speed in a B-1 zone, fraction of the top speed.
+    pub hazard_speed_factor: f64,
+    /// SPEED_REDUCTION (and the yielded-to robot): fraction of the top speed (paper: 0.5).
+    pub reduction_factor: f64,
+    /// Side distance kept from the right-hand wall when robots meet in a C-1 zone, measured
+    /// from the robot's centre; default half the width plus twice the margin.
+    pub keep_right_m: Option<f64>,
+    /// Turn rate per metre a side is closer than the margin, rad/s/m.
+    pub side_gain: f64,
+    /// Largest angle (degrees) between heading and door axis for a clearance measurement.
+    pub max_approach_deg: f64,
+}
+
+impl Default for Behaviour {
+    fn default() -> Self {
+        Behaviour {
+            transition_speed_factor: 0.6,
+            narrow_speed_factor: 0.3,
+            hazard_speed_factor: 0.5,
+            reduction_factor: 0.5,
+            keep_right_m: None,
+            side_gain: 4.0,
+            max_approach_deg: 25.0,
+        }
+    }
+}
+
+/// SensorClearance(E) for a door approached head-on, from the ray hits themselves. In the door's
+/// frame (depth along the wall normal from the door's centre in the model, offset `u` along the
+/// wall; only its position and orientation are used, not its width), every ray hit
+/// on an obstacle inside the door's depth band (its passage ring projected on the approach axis,
+/// +-5 cm) is a point of the wall around the opening:
+///
+/// - every wall point bounds the half opening on its side from above: far away the +-30 degree
+///   rays hit the face (the nearest depth in the band) at `u = d tan 30`;
+/// - a ray that then looks through the door crosses the face line inside the opening: its
+///   offset there bounds the half opening from below (`width = 2 d tan 30` at the switch);
+/// - hits deeper than the face are on the jamb's reveal: their offset is the jamb itself.
+///
+/// Each side's half width is its innermost wall point when that lies on the reveal, else the
+/// middle of its bounds (error at most half the distance a ray's face point moves in one step:
+/// 2.4 cm at 5 m/s); the two halves add up to the estimate. It is reported once both angled rays have hit
+/// the wall on their side and then looked through the door, and again whenever it changes by
+/// more than 1 mm.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Estimator {
+    door: u32,
+    origin: DVec2,
+    axis: DVec2,
+    band: (f64, f64),
+    /// Depth of the wall face: the nearest in-band hit.
+    face: f64,
+    /// Per side (0 left, 1 right): the innermost wall point (|u|, depth).
+    inner: [(f64, f64); 2],
+    /// Per side: the largest face-line offset of a ray that looked through the door.
+    lower: [f64; 2],
+    best: Option<f64>,
+}
+
+impl Estimator {
+    fn start(door: u32, centre: DVec2, axis: DVec2, ring: &[DVec2]) -> Estimator {
+        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+        for p in ring {
+            let d = (*p - centre).dot(axis);
+            lo = lo.min(d);
+            hi = hi.max(d);
+        }
+        Estimator {
+            door,
+            origin: centre,
+            axis,
+            band: (lo - 0.05, hi + 0.05),
+            face: f64::INFINITY,
+            inner: [(f64::INFINITY, 0.0); 2],
+            lower: [f64::NEG_INFINITY; 2],
+            best: None,
+        }
+    }
+
+    /// Adds one reading taken at `pos`; returns a new estimate to report.
+    fn update(&mut self, pos: DVec2, reading: &Reading) -> Option<f64> {
+        let lat = self.axis.perp();
+        for (ray, dir) in reading.rays.iter().zip(reading.dirs) {
+            if let Target::Obstacle(_) = ray.target {
+                let rel = pos + dir * ray.dist - self.origin;
+                let depth = rel.dot(self.axis);
+                if depth >= self.band.0 && depth <= self.band.1 {
+                    let u = rel.dot(lat);
+                    let side = usize::from(u < 0.0);
+                    self.face = self.face.min(depth);
+                    if u.abs() < self.inner[side].0 {
+                        self.inner[side] = (u.abs(), depth);
+                    }
+                }
+            }
+            let along = dir.dot(self.axis);
+            if dir.dot(lat).abs() > 0.2 && along > 1e-9 && ray.passages.contains(self.door) {
+                // Where the ray crossed the face line, on a side that has a wall point.
+                let t = (self.face - (pos - self.origin).dot(self.axis)) / along;
+                let u = (pos + dir * t - self.origin).dot(lat);
+                let side = usize::from(u < 0.0);
+                if t >= 0.0 && self.face.is_finite() && u.abs() < self.inner[side].0 {
+                    self.lower[side] = self.lower[side].max(u.abs());
+                }
+            }
+        }
+        let est = self.estimate()?;
+        if self.best.is_none_or(|b| (est - b).abs() > 0.001) {
+            self.best = Some(est);
+            return Some(est);
+        }
+        None
+    }
+
+    /// The current estimate, once both sides are bracketed.
+    pub fn estimate(&self) -> Option<f64> {
+        let mut width = 0.0;
+        for side in 0..2 {
+            let (upper, depth) = self.inner[side];
+            let lower = self.lower[side].min(upper);
+            if !lower.is_finite() || !upper.is_finite() {
+                return None;
+            }
+            // On the reveal (deeper than the face) the innermost point is the jamb itself.
+            width += if depth > self.face + 1e-6 {
+                upper
+            } else {
+                0.5 * (lower + upper)
+            };
+        }
+        Some(width)
+    }
+
+    /// True while the robot has not gone past the door's band.
+    fn before_exit(&self, pos: DVec2) -> bool {
+        (pos - self.origin).dot(self.axis) <= self.band.1 + 0.1
+    }
+}
+
+/// Algorithm 1's memory for one robot.
+#[derive(Debug, Clone)]
+pub struct Mind {
+    estimator: Option<Estimator>,
+    tracked: Vec<u32>,
+    /// The robot's own C-2.
+    pub c2: bool,
+    /// Current zone.
+    pub zone: Option<u32>,
+    keep: Option<WallPd>,
+}
+
+impl Mind {
+    /// A robot that has seen nothing yet.
+    pub fn new() -> Mind {
+        Mind {
+            estimator: None,
+            tracked: Vec::new(),
+            c2: false,
+            zone: None,
+            keep: None,
+        }
+    }
+}
+
+impl Default for Mind {
+    fn default() -> Self {
+        Mind::new()
+    }
+}
+
+/// What Algorithm 1 concluded this step, before the controller's command is shaped.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Perception {
+    /// Active roles: of the elements sensed, the zone, and the robot's C-2.
+    pub roles: RoleSet,
+    /// Speed limit from A-1, A-2/B-2, B-1 and C-1, m/s.
+    pub speed_cap: f64,
+    /// Turn rate added by A-1 side clearance, rad/s.
+    pub turn_bias: f64,
+    /// A-3 reference on the +90 ray (distance), when it hits an A-3 element directly.
+    pub left_ref: Option<f64>,
+    /// A-3 reference on the -90 ray.
+    pub right_ref: Option<f64>,
+    /// Nearest tracked robot and its centre distance.
+    pub nearest: Option<(u32, f64)>,
+    /// Keep to the right-hand wall (an oncoming robot in a C-1 zone).
+    pub keep_right: bool,
+    /// Stop (YIELD to a robot with priority).
+    pub stop: bool,
+}
+
+/// The run-wide things Algorithm 1 reads.
+#[derive(Debug, Clone, Copy)]
+pub struct Env<'a> {
+    /// The floor.
+    pub floor: &'a Floor,
+    /// Its graph (door axes).
+    pub nav: &'a NavGraph,
+    /// All robots (for tracked robots' poses and priorities).
+    pub robots: &'a [Robot],
+    /// Behaviour constants.
+    pub behaviour: &'a Behaviour,
+    /// Step.
+    pub step: u64,
+    /// Time.
+    pub t: f64,
+}
+
+/// Where Algorithm 1 reports.
+#[derive(Debug)]
+pub struct Sink<'a> {
+    /// Events.
+    pub events: &'a mut Vec<Event>,
+    /// Observations that changed a record, for the write-back: (GlobalId, observation, time).
+    pub observations: &'a mut Vec<(String, Observation, f64)>,
+}
+
+impl Sink<'_> {
+    fn push(&mut self, env: &Env<'_>, robot: &str, kind: EventKind) {
+        self.events.push(Event {
+            step: env.step,
+            t: env.t,
+            robot: robot.to_string(),
+            kind,
+        });
+    }
+
+    fn change(&mut self, env: &Env<'_>, robot: &str, db: &PoiDb, rec: usize, c: &RuntimeChange) {
+        let r = db.get(rec);
+        for &role in &c.added {
+            self.push(
+                env,
+                robot,
+                EventKind::RoleAdded {
+                    element: r.global_id.clone(),
+                    name: r.name.clone(),
+                    role,
+                },
+            );
+        }
+        for &role in &c.removed {
+            self.push(
+                env,
+                robot,
+                EventKind::RoleRemoved {
+                    element: r.global_id.clone(),
+                    name: r.name.clone(),
+                    role,
+                },
+            );
+        }
+        if let Some((from, to)) = c.status {
+            self.push(
+                env,
+                robot,
+                EventKind::StatusChanged {
+                    element: r.global_id.clone(),
+                    name: r.name.clone(),
+                    from,
+                    to,
+                },
+            );
+        }
+    }
+}
+
+fn has_priority(robots: &[Robot], me: usize, other: usize) -> bool {
+    let (a, b) = (robots[me].priority, robots[other].priority);
+    a > b || (a == b && me < other)
+}
+
+/// Runs the per-element part of Algorithm 1 for robot `me` on this step's `reading`.
+pub fn perceive(
+    me: usize,
+    reading: &Reading,
+    env: &Env<'_>,
+    db: &mut PoiDb,
+    mind: &mut Mind,
+    sink: &mut Sink<'_>,
+) -> Perception {
+    let robot = &env.robots[me];
+    let lim = &robot.limits;
+    let beh = env.behaviour;
+    let pos = robot.state.pos;
+    let dir = robot.dir();
+    let forward = robot.state.speed >= 0.0;
+    let mut roles = RoleSet::default();
+    let mut cap = lim.max_speed;
+    let mut turn_bias = 0.0;
+    let brake = 0.8 * lim.decel;
+
+    // Zone: where the robot is.
+    let zone = match mind.zone {
+        Some(z) if point_in_ring(pos, &env.floor.zones[z as usize].ring) => Some(z),
+        _ => env
+            .floor
+            .zones
+            .iter()
+            .position(|z| point_in_ring(pos, &z.ring))
+            .map(|z| z as u32),
+    };
+    if zone != mind.zone {
+        if let Some(z) = zone {
+            let zr = &env.floor.zones[z as usize];
+            sink.push(
+                env,
+                &robot.name,
+                EventKind::ZoneEntered {
+                    zone: zr.id.clone(),
+                    name: zr.name.clone(),
+                },
+            );
+        }
+        mind.zone = zone;
+    }
+    let zone_rec = zone.map(|z| db.index(Element::Zone(z)));
+    if let Some(z) = zone_rec {
+        // The zone's C-2 (any robot in it) is not this robot's: that one is added below.
+        roles = roles.union(db.roles(z).without(Role::RobotInteraction));
+        if db.roles(z).has(Role::Hazard) {
+            cap = cap.min(lim.max_speed * beh.hazard_speed_factor);
+        }
+    }
+
+    // Per element hit: roles, A-1, A-3, robots for C-1.
+    let mut left_ref = None;
+    let mut right_ref = None;
+    for (k, ray) in reading.rays.iter().enumerate() {
+        let angle = crate::sensor::RAY_DEG[k].to_radians();
+        let avoid = match ray.target {
+            Target::None => false,
+            Target::Robot(r) => {
+                if !mind.tracked.contains(&r) {
+                    mind.tracked.push(r);
+                }
+                true
+            }
+            Target::Obstacle(o) => {
+                let rec = db.index(Element::Obstacle(o));
+                let rr = db.roles(rec);
+                roles = roles.union(rr);
+                if rr.has(Role::PathGuidance) && ray.passages.is_empty() {
+                    if k == LEFT {
+                        left_ref = Some(ray.dist);
+                    } else if k == RIGHT {
+                        right_ref = Some(ray.dist);
+                    }
+                }
+                rr.has(Role::Avoidance)
+            }
+        };
+        for &d in ray.passages.doors() {
+            roles = roles.union(db.roles(db.index(Element::Door(d))));
+        }
+        if !avoid {
+            continue;
+        }
+        // MaintainClearance(E, margin).
+        if k == FRONT || k == LEFT30 || k == RIGHT30 {
+            let lateral = (ray.dist * angle.sin()).abs();
+            if forward && lateral <= lim.half_width + lim.margin {
+                let free = ray.dist * angle.cos() - lim.half_length - lim.margin;
+                cap = cap.min((2.0 * brake * free.max(0.0)).sqrt());
+            }
+        } else {
+            let free = ray.dist - lim.half_width;
+            if free < lim.margin {
+                let away = if k == LEFT { -1.0 } else { 1.0 };
+                turn_bias += away * beh.side_gain * (lim.margin - free);
+            }
+        }
+    }
+
+    // doors ahead.
+    let mut ahead: Vec<u32> = Vec::new();
+    for k in [FRONT, LEFT30, RIGHT30] {
+        for &d in reading.rays[k].passages.doors() {
+            if !ahead.contains(&d) {
+                ahead.push(d);
+            }
+        }
+    }
+    if let Some(e) = &mind.estimator {
+        if !ahead.contains(&e.door) {
+            ahead.push(e.door);
+        }
+    }
+    for &d in &ahead {
+        let rec = db.index(Element::Door(d));
+        let rr = db.roles(rec);
+        if !rr.has(Role::Transition) {
+            continue;
+        }
+        // Only doors the robot is about to pass through: axis along the heading, centre on
+        // the robot's path.
+        let rel = env.floor.doors[d as usize].center - pos;
+        let s = rel.dot(dir);
+        let through = env.nav.doors[d as usize]
+            .axis
+            .is_some_and(|a| a.dot(dir).abs() >= 45f64.to_radians().cos());
+        let on_path = rel.dot(dir.perp()).abs()
+            <= 0.5 * env.floor.doors[d as usize].clear_width_m + lim.half_width;
+        if s < -lim.half_length || !through || !on_path {
+            continue;
+        }
+        let factor = if rr.has(Role::Narrow) {
+            beh.narrow_speed_factor
+        } else {
+            beh.transition_speed_factor
+        };
+        let v_door = lim.max_speed * factor;
+        let gap = (s - lim.half_length).max(0.0);
+        cap = cap.min((v_door * v_door + 2.0 * brake * gap).sqrt());
+    }
+    sensor_clearance(me, reading, env, db, mind, sink, &ahead);
+
+    // C-1.
+    mind.tracked.retain(|&r| {
+        env.robots[r as usize].state.pos.distance(pos)
+            <= RANGE_M + env.robots[r as usize].footprint().radius()
+    });
+    mind.tracked.sort_unstable();
+    let nearest = mind
+        .tracked
+        .iter()
+        .map(|&r| (r, env.robots[r as usize].state.pos.distance(pos)))
+        .min_by(|a, b| a.1.total_cmp(&b.1).then(a.0.cmp(&b.0)));
+    let mut c2 = false;
+    let mut keep_right = false;
+    let mut stop = false;
+    let coordination = zone.and_then(|z| {
+        let zr = &env.floor.zones[z as usize];
+        let rec = db.index(Element::Zone(z));
+        if db.roles(rec).has(Role::MultiRobotZone) {
+            zr.coordination
+        } else {
+            None
+        }
+    });
+    if let (Some((sep, protocol)), Some((other, d))) = (coordination, nearest) {
+        if d < sep {
+            c2 = true;
+            let priority = has_priority(env.robots, me, other as usize);
+            let reduced = lim.max_speed * beh.reduction_factor;
+            match protocol {
+                CoordinationProtocol::SpeedReduction => cap = cap.min(reduced),
+                CoordinationProtocol::PriorityPass => {
+                    if !priority {
+                        cap = cap.min(reduced);
+                    }
+                }
+                CoordinationProtocol::Yield => {
+                    if priority {
+                        cap = cap.min(reduced);
+                    } else {
+                        stop = true;
+                    }
+                }
+            }
+        }
+        for &r in &mind.tracked {
+            let o = &env.robots[r as usize];
+            let rel = o.state.pos - pos;
+            if rel.dot(dir) > 0.0 && o.dir().dot(dir) < -0.5 && rel.length() < RANGE_M {
+                keep_right = true;
+            }
+        }
+    }
+    if c2 {
+        roles.insert(Role::RobotInteraction);
+    }
+    if c2 != mind.c2 {
+        sink.push(
+            env,
+            &robot.name,
+            EventKind::RobotRole {
+                role: Role::RobotInteraction,
+                on: c2,
+                other: nearest.map(|(r, _)| env.robots[r as usize].name.clone()),
+                distance_m: nearest.map_or(f64::INFINITY, |n| n.1),
+            },
+        );
+        mind.c2 = c2;
+    }
+    Perception {
+        roles,
+        speed_cap: cap.max(0.0),
+        turn_bias,
+        left_ref,
+        right_ref,
+        nearest,
+        keep_right,
+        stop,
+    }
+}
+
+/// The A-2 branch: starts, feeds and reports the door clearance estimate.
+fn sensor_clearance(
+    me: usize,
+    reading: &Reading,
+    env: &Env<'_>,
+    db: &mut PoiDb,
+    mind: &mut Mind,
+    sink: &mut Sink<'_>,
+    ahead: &[u32],
+) {
+    let robot = &env.robots[me];
+    let pos = robot.state.pos;
+    let dir = robot.dir();
+    let max_off = env.behaviour.max_approach_deg.to_radians();
+    if let Some(e) = &mind.estimator {
+        let aligned = e.axis.dot(dir) >= max_off.cos();
+        if !aligned || !e.before_exit(pos) {
+            mind.estimator = None;
+        }
+    }
+    if mind.estimator.is_none() {
+        for &d in ahead {
+            let rec = db.index(Element::Door(d));
+            if !db.roles(rec).has(Role::Transition) {
+                continue;
+            }
+            let Some(axis) = env.nav.doors[d as usize].axis else {
+                continue;
+            };
+            let to = env.floor.doors[d as usize].center - pos;
+            let off = wrap_angle(to.y.atan2(to.x) - robot.state.heading).abs();
+            if axis.dot(dir).abs() >= max_off.cos()
+                && off <= 20f64.to_radians()
+                && to.length() <= RANGE_M
+            {
+                let axis = if axis.dot(dir) >= 0.0 { axis } else { -axis };
+                let door = &env.floor.doors[d as usize];
+                mind.estimator = Some(Estimator::start(d, door.center, axis, &door.ring));
+                break;
+            }
+        }
+    }
+    let Some(e) = mind.estimator.as_mut() else {
+        return;
+    };
+    let Some(estimate) = e.update(pos, reading) else {
+        return;
+    };
+    let door = e.door;
+    let rec = db.index(Element::Door(door));
+    let observation = Observation::Clearance {
+        measured_width_m: estimate,
+    };
+    let change = db.apply(rec, observation);
+    let r = db.get(rec);
+    let a = r.accessibility.as_ref();
+    let mut roles: Vec<Role> = r.primary.iter().chain(&r.conditional).copied().collect();
+    roles.sort();
+    roles.dedup();
+    let kind = EventKind::Clearance {
+        door: r.global_id.clone(),
+        name: r.name.clone(),
+        estimate_m: estimate,
+        required_m: a.map_or(f64::NAN, |a| a.min_clearance_width_m),
+        status: a.map_or(poinav_poi::AccessibilityStatus::PendingValidation, |a| {
+            a.status
+        }),
+        roles,
+    };
+    sink.observations
+        .push((r.global_id.clone(), observation, env.t));
+    sink.push(env, &robot.name, kind);
+    sink.change(env, &robot.name, db, rec, &change);
+}
+
+/// C-1 at the zone level: a zone's record carries C-2 while some robot in it has C-2 (R5 with
+/// the smallest distance any of them measured), and loses it when none has.
+pub fn zone_coordination(
+    env: &Env<'_>,
+    minds: &[Mind],
+    nearest: &[Option<(u32, f64)>],
+    db: &mut PoiDb,
+    sink: &mut Sink<'_>,
+) {
+    for (z, zone) in env.floor.zones.iter().enumerate() {
+        if zone.coordination.is_none() {
+            continue;
+        }
+        let rec = db.index(Element::Zone(z as u32));
+        let mut closest: Option<(f64, usize)> = None;
+        let mut present: Option<usize> = None;
+        for (i, m) in minds.iter().enumerate() {
+            if m.zone != Some(z as u32) {
+                continue;
+            }
+            present.get_or_insert(i);
+            if let (true, Some((_, d))) = (m.c2, nearest[i]) {
+                if closest.is_none_or(|(c, _)| d < c) {
+                    closest = Some((d, i));
+                }
+            }
+        }
+        let has = db.roles(rec).has(Role::RobotInteraction);
+        let (distance, who) = match (closest, has) {
+            (Some((d, i)), _) => (d, i),
+            (None, true) => (f64::INFINITY, present.unwrap_or(0)),
+            (None, false) => continue,
+        };
+        let observation = Observation::RobotDistance {
+            distance_m: distance,
+        };
+        let change = db.apply(rec, observation);
+        if !change.is_empty() {
+            let name = env.robots[who].name.clone();
+            sink.observations
+                .push((db.get(rec).global_id.clone(), observation, env.t));
+            sink.change(env, &name, db, rec, &change);
+        }
+    }
+}
+
+/// ComputeNavigationAction: the controller's command within the speed cap, steered by A-1 side
+/// clearance, and along the right-hand wall while robots meet (unless driven by keys).
+pub fn decide(
+    p: &Perception,
+    cmd: Command,
+    robot: &Robot,
+    mind: &mut Mind,
+    t: f64,
+    manual: bool,
+    beh: &Behaviour,
+) -> Command {
+    let lim = &robot.limits;
+    let mut v = if cmd.v >= 0.0 {
+        cmd.v.min(p.speed_cap)
+    } else {
+        cmd.v.max(-p.speed_cap)
+    };
+    if p.stop {
+        v = 0.0;
+    }
+    let mut omega = cmd.omega;
+    if p.keep_right && !manual {
+        let target = beh
+            .keep_right_m
+            .unwrap_or(lim.half_width + 2.0 * lim.margin);
+        let pd = mind
+            .keep
+            .get_or_insert_with(|| WallPd::new(Side::Right, target));
+        if p.right_ref.is_some() {
+            omega = pd.omega(
+                p.right_ref,
+                t,
+                robot.state.heading,
+                robot.state.speed.max(0.5),
+            );
+        }
+    } else {
+        mind.keep = None;
+    }
+    omega += p.turn_bias;
+    Command {
+        v,
+        omega: omega.clamp(-lim.max_turn, lim.max_turn),
+    }
+}

@@ -1,0 +1,40 @@
+//! Errors of scenario loading, set-up, building preparation and output.
+
+use thiserror::Error;
+
+/// What can go wrong.
+#[derive(Debug, Error)]
+pub enum SimError {
+    /// A scenario file is wrong at a line.
+    #[error("{file}:{line}: {message}")]
+    Scenario {
+        /// File.
+        file: String,
+        /// Line (1-based).
+        line: usize,
+        /// What.
+        message: String,
+    },
+    /// A robot cannot be set up on the floor.
+    #[error("robot `{robot}`: {message}")]
+    Setup {
+        /// Robot name.
+        robot: String,
+        /// What.
+        message: String,
+    },
+    /// The building could not be prepared.
+    #[error("building: {0}")]
+    Building(String),
+    /// Reading or writing a file.
+    #[error("{path}: {message}")]
+    Io {
+        /// Path.
+        path: String,
+        /// What.
+        message: String,
+    },
+    /// POI enrichment or write-back.
+    #[error(transparent)]
+    Poi(#[from] poinav_poi::PoiError),
+}

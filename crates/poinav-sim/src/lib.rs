@@ -1,0 +1,52 @@
+//! Multi-robot simulation on a plain floor model ([`poinav_nav::Floor`], never IFC types):
+//! robots with the paper's limits and 5-ray sensors on a fixed 60 Hz step, Algorithm 1 turning
+//! POI roles into navigation actions and runtime role/status changes, scenario files with
+//! expectations, deterministic JSON Lines traces, summaries and SVG plots.
+//!
+//! ```no_run
+//! use std::path::Path;
+//! let scenario = poinav_sim::Scenario::load(Path::new("scenarios/separation.toml"))?;
+//! let building = poinav_sim::prepare(&scenario, None, None)?;
+//! let outcome = poinav_sim::run(&scenario, None, &building.floor)?;
+//! poinav_sim::write_outputs(Path::new("out/separation"), &outcome, &building.floor)?;
+//! assert!(outcome.passed());
+//! # Ok::<(), poinav_sim::SimError>(())
+//! ```
+
+pub mod algorithm1;
+pub mod building;
+pub mod controller;
+pub mod demo_floor;
+mod error;
+pub mod events;
+pub mod expect;
+pub mod geometry;
+pub mod output;
+pub mod plot;
+pub mod poi_db;
+pub mod robot;
+pub mod route;
+mod run;
+pub mod scenario;
+pub mod sensor;
+pub mod step;
+pub mod trace;
+pub mod world;
+
+pub use building::{prepare, FloorFromModel, Prepared};
+pub use error::SimError;
+pub use events::{Event, EventKind};
+pub use output::{apply_findings, write_back, write_outputs};
+pub use run::{run, Outcome};
+pub use scenario::Scenario;
+pub use step::{RobotSetup, Sim, SimOptions, DT};
+
+/// The scenarios shipped with the crate (`scenarios/*.toml`): name and file text.
+pub const SHIPPED: &[(&str, &str)] = &[
+    ("doorway", include_str!("../scenarios/doorway.toml")),
+    ("separation", include_str!("../scenarios/separation.toml")),
+    (
+        "wall-following",
+        include_str!("../scenarios/wall-following.toml"),
+    ),
+];

@@ -1,0 +1,93 @@
+//! `poinav export glb|fbx`: the building's element meshes (openings cut) as binary glTF or
+//! binary FBX 7.4, grouped by storey, with GlobalId, class, storey and POI data per element.
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use anyhow::Context;
+use poinav_export::SceneInput;
+use poinav_ifc::{spatial, units, Model};
+use poinav_poi::{classify, RobotProfile, RuleSet};
+
+/// Export formats.
+#[derive(Debug, clap::Subcommand)]
+pub enum Export {
+    /// glTF 2.0 binary: one node per element under storey nodes, Y up, `extras` with GlobalId,
+    /// IFC class, storey, POI category, roles and accessibility status.
+    Glb(MeshArgs),
+    /// Binary FBX 7.4 (what Unity imports): the same hierarchy, names carrying the GlobalId.
+    Fbx(MeshArgs),
+}
+
+/// Arguments of the 3D exports.
+#[derive(Debug, clap::Args)]
+pub struct MeshArgs {
+    /// The IFC file (never modified).
+    file: PathBuf,
+    /// Where to write.
+    #[arg(short, long)]
+    output: PathBuf,
+    /// Robot profile for the accessibility status in the metadata (default: the paper's robot).
+    #[arg(long)]
+    profile: Option<PathBuf>,
+    /// Rule file extending the default POI rules.
+    #[arg(long)]
+    rules: Option<PathBuf>,
+    /// Leave POI data out of the metadata.
+    #[arg(long)]
+    no_poi: bool,
+}
+
+/// Runs `poinav export ...`.
+pub fn run(export: &Export) -> anyhow::Result<ExitCode> {
+    let (args, format) = match export {
+        Export::Glb(a) => (a, "glb"),
+        Export::Fbx(a) => (a, "fbx"),
+    };
+    let model = Model::open(&args.file)?;
+    let meshes = poinav_geom::mesh_model(&model);
+    let unit = units::length_unit(&model);
+    let structure = spatial::spatial_structure(&model, &unit);
+    let classification = if args.no_poi {
+        None
+    } else {
+        let rules = match &args.rules {
+            Some(p) => RuleSet::with_user_file(p)?,
+            None => RuleSet::defaults(),
+        };
+        let profile = match &args.profile {
+            Some(p) => RobotProfile::load(p)?,
+            None => RobotProfile::paper(),
+        };
+        Some(classify(&model, &rules, &profile))
+    };
+    let scene = SceneInput {
+        storeys: &structure.storeys,
+        elements: &meshes.elements,
+        poi: classification.as_ref(),
+    };
+    match format {
+        "glb" => poinav_export::glb::write_glb(&args.output, &scene),
+        _ => poinav_export::fbx::write_fbx(&args.output, &scene),
+    }
+    .with_context(|| format!("writing {}", args.output.display()))?;
+    let triangles: usize = meshes.elements.iter().map(|e| e.mesh.triangles.len()).sum();
+    println!(
+        "wrote {}: {} elements ({} triangles) on {} storeys; {} elements without geometry",
+        args.output.display(),
+        meshes.elements.len(),
+        triangles,
+        structure.storeys.len(),
+        meshes.failures.len()
+    );
+    for (id, err) in meshes.failures.iter().take(20) {
+        eprintln!("warning: {id}: {err}");
+    }
+    if meshes.failures.len() > 20 {
+        eprintln!(
+            "warning: ... and {} more elements without geometry",
+            meshes.failures.len() - 20
+        );
+    }
+    Ok(ExitCode::SUCCESS)
+}

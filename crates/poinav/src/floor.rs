@@ -1,0 +1,142 @@
+//! Glue: turns an IFC model and its POI classification into the plain floor model navigation
+//! and simulation use (`poinav_nav::Floor`), through the storey floor plans of `poinav-geom`.
+
+use std::collections::HashMap;
+
+use poinav_geom::{floor_plans, FloorPlan, PlanItemKind, PlanOptions};
+use poinav_ifc::Model;
+use poinav_nav::{Floor, FloorDoor, FloorObstacle, FloorZone, ObstacleKind};
+use poinav_poi::{AccessibilityStatus, Classification, Classified, Role};
+
+/// The converter the simulator calls for IFC buildings: the storey named `storey` (or the
+/// lowest storey with doors) as a [`Floor`].
+pub fn converter() -> impl Fn(&Model, &Classification, Option<&str>) -> Result<Floor, String> {
+    |model, classification, storey| {
+        let plans = floor_plans(model, &PlanOptions::default());
+        let plan = pick(&plans, storey)?;
+        Ok(floor_from_plan(plan, classification))
+    }
+}
+
+/// The plan of the storey named `storey`, else the lowest one with doors, else the first.
+pub fn pick<'p>(plans: &'p [FloorPlan], storey: Option<&str>) -> Result<&'p FloorPlan, String> {
+    match storey {
+        Some(name) => plans
+            .iter()
+            .find(|p| {
+                p.storey_name.as_deref() == Some(name)
+                    || p.storey_global_id.as_deref() == Some(name)
+            })
+            .ok_or_else(|| {
+                let names: Vec<String> = plans
+                    .iter()
+                    .map(|p| {
+                        p.storey_name
+                            .clone()
+                            .unwrap_or_else(|| p.storey.to_string())
+                    })
+                    .collect();
+                format!(
+                    "no storey named `{name}`; the model has: {}",
+                    names.join(", ")
+                )
+            }),
+        None => plans
+            .iter()
+            .find(|p| !p.doors.is_empty())
+            .or(plans.first())
+            .ok_or_else(|| "the model has no storey to plan".to_string()),
+    }
+}
+
+fn roles(c: Option<&Classified>) -> Vec<Role> {
+    let mut r: Vec<Role> = c
+        .map(|c| c.primary.iter().chain(&c.conditional).copied().collect())
+        .unwrap_or_default();
+    r.sort();
+    r.dedup();
+    r
+}
+
+/// One storey plan with the roles, statuses and coordination of `classification`.
+pub fn floor_from_plan(plan: &FloorPlan, classification: &Classification) -> Floor {
+    let by_guid: HashMap<&str, &Classified> = classification
+        .elements
+        .iter()
+        .map(|c| (c.global_id.as_str(), c))
+        .collect();
+    let required = classification.profile.min_clearance_width();
+    let mut floor = Floor {
+        name: plan
+            .storey_name
+            .clone()
+            .unwrap_or_else(|| plan.storey.to_string()),
+        elevation_m: plan.elevation_m,
+        ..Floor::default()
+    };
+    for item in &plan.items {
+        let c = by_guid.get(item.global_id.as_str()).copied();
+        let rings = || {
+            item.regions
+                .iter()
+                .map(|r| r.outer.clone())
+                .filter(|r| r.len() >= 3)
+                .collect::<Vec<_>>()
+        };
+        let kind = match item.kind {
+            PlanItemKind::Wall
+            | PlanItemKind::Column
+            | PlanItemKind::Obstacle
+            | PlanItemKind::DoorFrame
+            | PlanItemKind::Window => ObstacleKind::Structure,
+            PlanItemKind::Furniture => ObstacleKind::Furniture,
+            PlanItemKind::Stair | PlanItemKind::Ramp => ObstacleKind::Transition,
+            PlanItemKind::Space => {
+                for region in &item.regions {
+                    floor.zones.push(FloorZone {
+                        id: item.global_id.clone(),
+                        name: item.name.clone(),
+                        long_name: item.long_name.clone(),
+                        ring: region.outer.clone(),
+                        roles: roles(c),
+                        coordination: c
+                            .and_then(|c| c.coordination.as_ref())
+                            .map(|k| (k.min_separation_m, k.protocol)),
+                    });
+                }
+                continue;
+            }
+            // Door leaves are passages or closures depending on the status: navigation decides
+            // from the door's passage ring; the simulator treats doors as open.
+            PlanItemKind::DoorLeaf | PlanItemKind::DoorOpening => continue,
+        };
+        let rings = rings();
+        if !rings.is_empty() {
+            floor.obstacles.push(FloorObstacle {
+                id: item.global_id.clone(),
+                class: item.class.clone(),
+                kind,
+                rings,
+                roles: roles(c),
+            });
+        }
+    }
+    for door in &plan.doors {
+        let Some(ring) = door.passage().map(|r| r.outer) else {
+            continue;
+        };
+        let c = by_guid.get(door.global_id.as_str()).copied();
+        let access = c.and_then(|c| c.accessibility.as_ref());
+        floor.doors.push(FloorDoor {
+            id: door.global_id.clone(),
+            name: door.name.clone(),
+            ring,
+            center: door.center,
+            clear_width_m: door.clear_width_m,
+            status: access.map_or(AccessibilityStatus::PendingValidation, |a| a.status),
+            min_clearance_width_m: access.map_or(required, |a| a.min_clearance_width_m),
+            roles: roles(c),
+        });
+    }
+    floor
+}

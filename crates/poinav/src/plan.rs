@@ -1,0 +1,79 @@
+//! `poinav plan FILE --storey NAME -o plan.svg`: a readable floor plan of one storey.
+
+use std::collections::HashMap;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use anyhow::Context;
+use poinav_export::plan_svg::{to_svg, SvgOptions};
+use poinav_geom::{floor_plans, PlanOptions};
+use poinav_ifc::Model;
+use poinav_poi::{classify, RobotProfile, RuleSet};
+
+/// Arguments of `poinav plan`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// The IFC file (never modified).
+    file: PathBuf,
+    /// The storey (Name or GlobalId); default: the lowest storey with doors.
+    #[arg(long)]
+    storey: Option<String>,
+    /// Where to write the SVG.
+    #[arg(short, long)]
+    output: PathBuf,
+    /// Robot profile whose door statuses colour the doors (default: the paper's robot).
+    #[arg(long)]
+    profile: Option<PathBuf>,
+    /// Lowest height of the plan's band above the storey, metres.
+    #[arg(long, default_value_t = 0.05)]
+    band_min: f64,
+    /// Highest height of the band, metres (the robot's height is a good choice).
+    #[arg(long, default_value_t = 1.0)]
+    band_max: f64,
+}
+
+/// Runs `poinav plan`.
+pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
+    let model = Model::open(&args.file)?;
+    let plans = floor_plans(
+        &model,
+        &PlanOptions {
+            band_min_m: args.band_min,
+            band_max_m: args.band_max,
+        },
+    );
+    let plan = crate::floor::pick(&plans, args.storey.as_deref()).map_err(anyhow::Error::msg)?;
+    let profile = match &args.profile {
+        Some(p) => RobotProfile::load(p)?,
+        None => RobotProfile::paper(),
+    };
+    let c = classify(&model, &RuleSet::defaults(), &profile);
+    let door_status: HashMap<String, String> = c
+        .elements
+        .iter()
+        .filter(|e| e.class == "IfcDoor")
+        .filter_map(|e| {
+            e.accessibility
+                .as_ref()
+                .map(|a| (e.global_id.clone(), a.status.label().to_string()))
+        })
+        .collect();
+    let svg = to_svg(
+        plan,
+        &SvgOptions {
+            door_status,
+            ..SvgOptions::default()
+        },
+    );
+    poinav_ifc::output::write_atomic(&args.output, svg.as_bytes())
+        .with_context(|| format!("writing {}", args.output.display()))?;
+    println!(
+        "wrote {}: storey {} ({} items, {} doors, {} problems)",
+        args.output.display(),
+        plan.storey_name.as_deref().unwrap_or("-"),
+        plan.items.len(),
+        plan.doors.len(),
+        plan.problems.len()
+    );
+    Ok(ExitCode::SUCCESS)
+}

@@ -1,0 +1,131 @@
+//! `poinav simulate SCENARIO -o DIR`: runs every variant (or one) of a scenario file, writes
+//! trace, summary and plots, optionally writes what the robots found back into the IFC.
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use anyhow::Context;
+use poinav_sim::{Outcome, Prepared, Scenario};
+
+/// Arguments of `poinav simulate`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// The scenario file (TOML, see docs/scenarios.md).
+    scenario: PathBuf,
+    /// Output folder: trace.jsonl, summary.json, trajectories.svg, speed.svg, distance.svg
+    /// (one sub-folder per variant when the scenario has variants).
+    #[arg(short, long)]
+    output: PathBuf,
+    /// Run only this variant.
+    #[arg(long)]
+    variant: Option<String>,
+    /// Write the sensor findings (conditional roles, SENSOR_BASED statuses) into a copy of the
+    /// building's IFC here (with several variants: one file per variant, `NAME.<variant>.ifc`).
+    #[arg(long)]
+    write_back: Option<PathBuf>,
+}
+
+/// One variant's result.
+pub struct VariantRun {
+    /// Variant name, if the scenario has variants.
+    pub variant: Option<String>,
+    /// Output folder.
+    pub dir: PathBuf,
+    /// The run.
+    pub outcome: Outcome,
+    /// The building it ran on.
+    pub building: Prepared,
+}
+
+/// Runs `variant` (or every variant) of `scenario`, writing outputs under `out`.
+pub fn run_scenario(
+    scenario: &Scenario,
+    only: Option<&str>,
+    out: &Path,
+) -> anyhow::Result<Vec<VariantRun>> {
+    let names: Vec<Option<String>> = match only {
+        Some(v) => vec![Some(v.to_string())],
+        None if scenario.variant_names().is_empty() => vec![None],
+        None => scenario
+            .variant_names()
+            .into_iter()
+            .map(|v| Some(v.to_string()))
+            .collect(),
+    };
+    let converter = crate::floor::converter();
+    let mut runs = Vec::new();
+    for variant in names {
+        let building = poinav_sim::prepare(scenario, variant.as_deref(), Some(&converter))?;
+        let outcome = poinav_sim::run(scenario, variant.as_deref(), &building.floor)?;
+        let dir = match &variant {
+            Some(v) => out.join(v),
+            None => out.to_path_buf(),
+        };
+        poinav_sim::write_outputs(&dir, &outcome, &building.floor)?;
+        runs.push(VariantRun {
+            variant,
+            dir,
+            outcome,
+            building,
+        });
+    }
+    Ok(runs)
+}
+
+/// Prints one line per expectation; returns whether all held.
+pub fn report(name: &str, runs: &[VariantRun]) -> bool {
+    let mut all = true;
+    for r in runs {
+        let label = match &r.variant {
+            Some(v) => format!("{name} [{v}]"),
+            None => name.to_string(),
+        };
+        for j in &r.outcome.judged {
+            println!(
+                "  {label:<28} {:<22} {}  measured {}",
+                j.kind,
+                if j.pass { "PASS" } else { "FAIL" },
+                j.measured
+            );
+        }
+        all &= r.outcome.passed();
+    }
+    all
+}
+
+/// Runs `poinav simulate`.
+pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
+    let scenario = Scenario::load(&args.scenario)?;
+    let runs = run_scenario(&scenario, args.variant.as_deref(), &args.output)?;
+    let passed = report(&scenario.name, &runs);
+    if let Some(target) = &args.write_back {
+        let stamp =
+            poinav_ifc::timestamp::iso8601_utc(poinav_ifc::timestamp::now_or_source_date_epoch());
+        let opts = poinav_poi::WriteOptions {
+            prefix: "Pset_".into(),
+            timestamp: stamp,
+        };
+        for r in &runs {
+            let path = match (&r.variant, runs.len()) {
+                (Some(v), n) if n > 1 => target.with_extension(format!("{v}.ifc")),
+                _ => target.clone(),
+            };
+            let editor = poinav_sim::write_back(
+                &r.building.model,
+                &r.building.classification,
+                &r.outcome,
+                &opts,
+            )?;
+            editor
+                .write(&path)
+                .with_context(|| format!("writing {}", path.display()))?;
+            println!("wrote sensor findings to {}", path.display());
+        }
+    }
+    println!("outputs in {}", args.output.display());
+    Ok(if passed {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(1)
+    })
+}
