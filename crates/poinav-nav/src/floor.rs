@@ -104,6 +104,8 @@ impl Floor {
 
     /// The zone with this name (Name or LongName).
     pub fn zone(&self, name: &str) -> Option<&FloorZone> {
-        self.zones.iter().find(|z| z.name.as_deref() == Some(name) || z.long_name.as_deref() == Some(name))
+        self.zones
+            .iter()
+            .find(|z| z.name.as_deref() == Some(name) || z.long_name.as_deref() == Some(name))
     }
 }
