@@ -9,7 +9,7 @@ cd "$root/fuzz"
 seconds="${1:-30}"
 shift || true
 targets=("$@")
-[[ ${#targets[@]} -gt 0 ]] || targets=(step_reader step_string rules_loader enrichment)
+[[ ${#targets[@]} -gt 0 ]] || targets=(step_reader step_string rules_loader scenario_loader enrichment)
 
 if ! command -v cargo-fuzz >/dev/null 2>&1; then
     cargo install cargo-fuzz --version 0.13.2 --locked

@@ -5,6 +5,8 @@ use glam::DVec2;
 use poinav_poi::{AccessibilityStatus, CoordinationProtocol, Role};
 use serde::{Deserialize, Serialize};
 
+use crate::polygon::PassageFrame;
+
 /// What an obstacle is, for maps and sensors.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
@@ -87,6 +89,20 @@ pub struct Floor {
     pub zones: Vec<FloorZone>,
 }
 
+impl FloorDoor {
+    /// The passage's frame from the ring alone: the width axis along the ring's longest edge,
+    /// unless that extent is narrower than the clear width and the other is not. `None` without
+    /// a usable ring. [`Floor::door_frame`] also looks at the zones on either side.
+    pub fn frame(&self) -> Option<PassageFrame> {
+        let f = PassageFrame::of(&self.ring)?;
+        let w = self.clear_width_m;
+        if w.is_finite() && 2.0 * f.half_width < w - 1e-6 && 2.0 * f.half_depth >= w - 1e-6 {
+            return Some(f.swapped());
+        }
+        Some(f)
+    }
+}
+
 impl Floor {
     /// Bounding box of everything on the floor (min, max); `None` when empty.
     pub fn bounds(&self) -> Option<(DVec2, DVec2)> {
@@ -100,6 +116,20 @@ impl Floor {
             None => Some((*p, *p)),
             Some((lo, hi)) => Some((lo.min(*p), hi.max(*p))),
         })
+    }
+
+    /// The frame of door `k`'s passage: of the two orientations of its ring, the one with
+    /// zones beyond more of its faces (a door joins two spaces); on a tie, [`FloorDoor::frame`].
+    pub fn door_frame(&self, k: usize) -> Option<PassageFrame> {
+        let d = self.doors.get(k)?;
+        let f = d.frame()?;
+        let score = |f: &PassageFrame| crate::graph::frame_zones(self, f).iter().flatten().count();
+        let g = f.swapped();
+        if score(&g) > score(&f) {
+            Some(g)
+        } else {
+            Some(f)
+        }
     }
 
     /// The zone with this name (Name or LongName).

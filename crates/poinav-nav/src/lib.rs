@@ -1,6 +1,80 @@
 //! Navigation on a plain floor model (no IFC types): the [`Floor`] that navigation and
-//! simulation share; occupancy grids, the room/door graph, routes and the audit build on it.
+//! simulation share, and on it occupancy grids, the room/door graph, routes, the
+//! accessibility audit and Nav2 bundles.
+//!
+//! - [`building`]: a [`Building`] is storeys plus stairs, ramps and lifts; door and connection
+//!   statuses for any profile.
+//! - [`grid`]: rasterising a storey ([`OccupancyGrid`]) and inflating it for a robot
+//!   ([`NavGrid`]).
+//! - [`graph`]: the [`Topology`] of zones, doors and landings.
+//! - [`navigator`]: a building prepared for one profile ([`Navigator`]); [`route`] plans on it.
+//! - [`audit`]: reachability and door statuses per profile, JSON, SVG ([`svg`]) and HTML.
+//! - [`nav2`]: map, masks, filter parameters and route graph for Nav2.
+//!
+//! ```
+//! use glam::DVec2;
+//! use poinav_nav::{Building, Floor, FloorDoor, FloorObstacle, FloorZone, NavOptions, Navigator, ObstacleKind, Place};
+//! use poinav_poi::{AccessibilityStatus, RobotProfile};
+//!
+//! let rect = |x0: f64, y0: f64, x1: f64, y1: f64| {
+//!     vec![DVec2::new(x0, y0), DVec2::new(x1, y0), DVec2::new(x1, y1), DVec2::new(x0, y1)]
+//! };
+//! let zone = |name: &str, ring| FloorZone {
+//!     id: name.into(), name: Some(name.into()), long_name: None, ring, roles: vec![], coordination: None,
+//! };
+//! // Two 4 x 4 m rooms inside outer walls, a 0.2 m wall between them with a 1.0 m door.
+//! let wall = |id: &str, rings| FloorObstacle {
+//!     id: id.into(), class: "IfcWall".into(), kind: ObstacleKind::Structure, rings, roles: vec![],
+//! };
+//! let floor = Floor {
+//!     name: "Level 1".into(),
+//!     elevation_m: 0.0,
+//!     obstacles: vec![
+//!         wall("outer", vec![rect(-0.2, -0.2, 8.4, 0.0), rect(-0.2, 4.0, 8.4, 4.2),
+//!                            rect(-0.2, 0.0, 0.0, 4.0), rect(8.2, 0.0, 8.4, 4.0)]),
+//!         wall("middle", vec![rect(4.0, 0.0, 4.2, 1.5), rect(4.0, 2.5, 4.2, 4.0)]),
+//!     ],
+//!     doors: vec![FloorDoor {
+//!         id: "door".into(),
+//!         name: Some("Door".into()),
+//!         ring: rect(4.0, 1.5, 4.2, 2.5),
+//!         center: DVec2::new(4.1, 2.0),
+//!         clear_width_m: 1.0,
+//!         status: AccessibilityStatus::FullAccess,
+//!         min_clearance_width_m: 0.9,
+//!         roles: vec![],
+//!     }],
+//!     zones: vec![zone("West", rect(0.0, 0.0, 4.0, 4.0)), zone("East", rect(4.2, 0.0, 8.2, 4.0))],
+//! };
+//! let building = Building::single(floor);
+//! let nav = Navigator::new(&building, &RobotProfile::paper(), &NavOptions::default())?;
+//! let route = nav.route(&Place::zone("West"), &Place::zone("East"))?;
+//! assert_eq!(route.doors[0].name.as_deref(), Some("Door"));
+//! // From the middle of one room to the middle of the other.
+//! assert!((route.length_m - 4.2).abs() < 0.05, "{}", route.length_m);
+//! # Ok::<(), poinav_nav::NavError>(())
+//! ```
 
+pub mod audit;
+pub mod building;
+mod error;
 mod floor;
+pub mod graph;
+pub mod grid;
+pub mod nav2;
+pub mod navigator;
+pub mod polygon;
+pub mod route;
+pub mod speed;
+pub mod svg;
 
+pub use audit::{audit, AuditOptions, AuditReport};
+pub use building::{Building, ConnectionKind, Landing, VerticalConnection};
+pub use error::NavError;
 pub use floor::{Floor, FloorDoor, FloorObstacle, FloorZone, ObstacleKind};
+pub use graph::Topology;
+pub use grid::{CellState, FurnitureMode, GridOptions, InflationOptions, NavGrid, OccupancyGrid};
+pub use nav2::{write_bundle, Nav2Options};
+pub use navigator::{NavOptions, Navigator};
+pub use route::{Place, Route, Unreachable};
+pub use speed::RoleSpeeds;

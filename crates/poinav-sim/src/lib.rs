@@ -21,6 +21,7 @@ mod error;
 pub mod events;
 pub mod expect;
 pub mod geometry;
+pub mod ifc_floor;
 pub mod output;
 pub mod plot;
 pub mod poi_db;

@@ -2,10 +2,10 @@
 //! uniform grid (compressed rows), the robots' boxes in the same grid rebuilt each step, exact ray
 //! casts walking the grid cell by cell (Amanatides-Woo), and box queries for contacts.
 //!
-//! Why not parry2d: the project measured (FIELD-NOTES.md, "2D robot simulation cost") a uniform
-//! grid with analytic casts at 1.7x parry2d's speed for 2 robots and 2.2x for 100, both matching
-//! an exact reference; `benches/steps.rs` measures this one, and the tests check every cast
-//! against brute force.
+//! Why not parry2d: measured on the same rays with equal distances (`benches/ray_casts.rs`),
+//! this index casts 2.6-2.7x faster than parry2d-f64's BVH on the test building and on office-a
+//! (README, Performance); FIELD-NOTES.md found the same for uniform grids. The tests check every
+//! cast against brute force.
 
 use glam::DVec2;
 use poinav_nav::Floor;

@@ -17,6 +17,8 @@ pub enum Export {
     Glb(MeshArgs),
     /// Binary FBX 7.4 (what Unity imports): the same hierarchy, names carrying the GlobalId.
     Fbx(MeshArgs),
+    /// A Nav2 bundle per storey: map, keepout and speed masks, costmap filter info, route graph.
+    Nav2(crate::navigate::Nav2Args),
 }
 
 /// Arguments of the 3D exports.
@@ -43,6 +45,7 @@ pub fn run(export: &Export) -> anyhow::Result<ExitCode> {
     let (args, format) = match export {
         Export::Glb(a) => (a, "glb"),
         Export::Fbx(a) => (a, "fbx"),
+        Export::Nav2(a) => return crate::navigate::nav2(a),
     };
     let model = Model::open(&args.file)?;
     let meshes = poinav_geom::mesh_model(&model);

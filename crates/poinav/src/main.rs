@@ -4,8 +4,8 @@ mod author;
 mod demo;
 mod enrich;
 mod export;
-mod floor;
 mod inspect;
+mod navigate;
 mod plan;
 mod simulate;
 
@@ -27,6 +27,10 @@ enum Command {
     Inspect(inspect::Args),
     /// Add robot POI semantics (three property sets) to a copy of an IFC file; write CSV and IDS.
     Enrich(enrich::Args),
+    /// Find a route between two rooms for a robot profile (A* on the occupancy grid, POI-aware costs).
+    Route(navigate::RouteArgs),
+    /// Accessibility audit per robot profile: doors, transitions, reachable spaces, drawings.
+    Audit(navigate::AuditArgs),
     /// Draw a storey's floor plan as SVG: walls with door gaps, doors coloured by accessibility,
     /// spaces with names, scale bar.
     Plan(plan::Args),
@@ -54,6 +58,8 @@ fn main() -> ExitCode {
         Command::Inspect(args) => inspect::run(&args),
         Command::Enrich(args) => enrich::run(&args),
         Command::Plan(args) => plan::run(&args),
+        Command::Route(args) => navigate::route(&args),
+        Command::Audit(args) => navigate::audit(&args),
         Command::Export(export) => export::run(&export),
         Command::Simulate(args) => simulate::run(&args),
         Command::Demo(args) => demo::run(&args),

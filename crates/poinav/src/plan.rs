@@ -42,7 +42,8 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
             band_max_m: args.band_max,
         },
     );
-    let plan = crate::floor::pick(&plans, args.storey.as_deref()).map_err(anyhow::Error::msg)?;
+    let plan =
+        poinav_sim::ifc_floor::pick(&plans, args.storey.as_deref()).map_err(anyhow::Error::msg)?;
     let profile = match &args.profile {
         Some(p) => RobotProfile::load(p)?,
         None => RobotProfile::paper(),

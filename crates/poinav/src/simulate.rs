@@ -52,7 +52,7 @@ pub fn run_scenario(
             .map(|v| Some(v.to_string()))
             .collect(),
     };
-    let converter = crate::floor::converter();
+    let converter = poinav_sim::ifc_floor::converter();
     let mut runs = Vec::new();
     for variant in names {
         let building = poinav_sim::prepare(scenario, variant.as_deref(), Some(&converter))?;

@@ -1,5 +1,5 @@
-//! Glue: turns an IFC model and its POI classification into the plain floor model navigation
-//! and simulation use (`poinav_nav::Floor`), through the storey floor plans of `poinav-geom`.
+//! IFC storey -> `poinav_nav::Floor`: a storey floor plan (`poinav-geom`) with the roles,
+//! statuses and coordination of a POI classification, for simulating real buildings.
 
 use std::collections::HashMap;
 
@@ -139,4 +139,18 @@ pub fn floor_from_plan(plan: &FloorPlan, classification: &Classification) -> Flo
         });
     }
     floor
+}
+
+/// Every storey of `model` as a floor (storeys without doors or spaces included), for
+/// navigation: a [`poinav_nav::Building`] without vertical connections (stairs, ramps and lifts
+/// between storeys are not derived from IFC yet, so routes stay on one storey).
+pub fn building_of(model: &Model, classification: &Classification) -> poinav_nav::Building {
+    let plans = floor_plans(model, &PlanOptions::default());
+    poinav_nav::Building {
+        floors: plans
+            .iter()
+            .map(|p| floor_from_plan(p, classification))
+            .collect(),
+        connections: Vec::new(),
+    }
 }

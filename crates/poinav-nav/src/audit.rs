@@ -1,0 +1,559 @@
+//! The accessibility audit: for each robot profile, every door and vertical connection with
+//! its status and the reason (clear width against the requirement), whether the robot's
+//! centre can cross each door in the inflated grid, and every space reachable or not from the
+//! entrances (exterior doors) or a named start, with the doors that block it. Written as JSON,
+//! one SVG floor plan per storey and profile coloured by status, and `report.html` wrapping
+//! them.
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use poinav_poi::{AccessibilityStatus, RobotProfile, Role};
+use serde::Serialize;
+
+use crate::building::Building;
+use crate::navigator::{NavOptions, Navigator};
+use crate::route::{Blocking, Place, Target};
+use crate::svg;
+use crate::NavError;
+
+/// How to audit.
+#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+pub struct AuditOptions {
+    /// Grids, inflation, speeds.
+    pub nav: NavOptions,
+    /// A named start space (`Room 1` or `Room 1@Storey`); default: the entrances.
+    pub start: Option<String>,
+}
+
+/// A door as audited.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct DoorAudit {
+    /// Storey index.
+    pub floor: usize,
+    /// Storey name.
+    pub floor_name: String,
+    /// GlobalId.
+    pub id: String,
+    /// Name.
+    pub name: Option<String>,
+    /// Clear width, metres.
+    pub clear_width_m: f64,
+    /// Required clear width (MinClearanceWidth), metres.
+    pub required_width_m: f64,
+    /// Status for the profile.
+    pub status: AccessibilityStatus,
+    /// Why.
+    pub reason: String,
+    /// The robot's centre can cross it in the inflated grid.
+    pub grid_passable: bool,
+    /// An entrance (a zone on one side only).
+    pub exterior: bool,
+    /// Names of the zones on its two sides (`outside` for none).
+    pub zones: Vec<String>,
+    /// POI roles.
+    pub roles: Vec<Role>,
+}
+
+/// A vertical connection as audited.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct TransitionAudit {
+    /// GlobalId.
+    pub id: String,
+    /// Name.
+    pub name: Option<String>,
+    /// `stair`, `ramp`, `lift`.
+    pub kind: &'static str,
+    /// Storeys served.
+    pub floors: Vec<String>,
+    /// Clear width, metres.
+    pub clear_width_m: Option<f64>,
+    /// Slope, degrees.
+    pub slope_deg: Option<f64>,
+    /// Status for the profile.
+    pub status: AccessibilityStatus,
+    /// Why.
+    pub reason: String,
+}
+
+/// A space as audited.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SpaceAudit {
+    /// Storey index.
+    pub floor: usize,
+    /// Storey name.
+    pub floor_name: String,
+    /// GlobalId.
+    pub id: String,
+    /// Name (Name, else LongName).
+    pub name: Option<String>,
+    /// Reachable from the starts.
+    pub reachable: bool,
+    /// Reachable, but only through RESTRICTED doors.
+    pub restricted_only: bool,
+    /// For unreachable spaces: the doors and transitions on the least-blocked way in.
+    pub blocked_by: Vec<Blocking>,
+    /// A sentence.
+    pub reason: String,
+    /// POI roles.
+    pub roles: Vec<Role>,
+}
+
+/// One profile's audit.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ProfileAudit {
+    /// Profile name.
+    pub profile: String,
+    /// Robot width, metres.
+    pub robot_width_m: f64,
+    /// MinClearanceWidth, metres.
+    pub required_width_m: f64,
+    /// Lethal inflation radius used, metres.
+    pub lethal_radius_m: f64,
+    /// Inflation (cost) radius used, metres.
+    pub inflation_radius_m: f64,
+    /// What reachability was measured from.
+    pub starts: Vec<String>,
+    /// Doors.
+    pub doors: Vec<DoorAudit>,
+    /// Stairs, ramps, lifts.
+    pub transitions: Vec<TransitionAudit>,
+    /// Spaces.
+    pub spaces: Vec<SpaceAudit>,
+}
+
+impl ProfileAudit {
+    /// Door counts: FULL_ACCESS, RESTRICTED, BLOCKED, PENDING_VALIDATION.
+    pub fn door_counts(&self) -> [usize; 4] {
+        let mut n = [0; 4];
+        for d in &self.doors {
+            n[status_index(d.status)] += 1;
+        }
+        n
+    }
+
+    /// Reachable and unreachable space counts.
+    pub fn space_counts(&self) -> (usize, usize) {
+        let r = self.spaces.iter().filter(|s| s.reachable).count();
+        (r, self.spaces.len() - r)
+    }
+}
+
+fn status_index(s: AccessibilityStatus) -> usize {
+    match s {
+        AccessibilityStatus::FullAccess => 0,
+        AccessibilityStatus::Restricted => 1,
+        AccessibilityStatus::Blocked => 2,
+        AccessibilityStatus::PendingValidation => 3,
+    }
+}
+
+/// The audit of every profile.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct AuditReport {
+    /// Storey names.
+    pub floors: Vec<String>,
+    /// Per profile, in the order given.
+    pub profiles: Vec<ProfileAudit>,
+}
+
+/// Audits `building` for each of `profiles`.
+pub fn audit(
+    building: &Building,
+    profiles: &[RobotProfile],
+    options: &AuditOptions,
+) -> Result<AuditReport, NavError> {
+    let mut out = Vec::new();
+    for p in profiles {
+        let nav = Navigator::new(building, p, &options.nav)?;
+        out.push(audit_profile(&nav, options.start.as_deref())?);
+    }
+    Ok(AuditReport {
+        floors: building.floors.iter().map(|f| f.name.clone()).collect(),
+        profiles: out,
+    })
+}
+
+/// Audits one prepared profile.
+pub fn audit_profile(nav: &Navigator<'_>, start: Option<&str>) -> Result<ProfileAudit, NavError> {
+    let b = nav.building;
+    let t = &nav.topology;
+    let zone_label = |floor: usize, z: Option<usize>| -> String {
+        match z {
+            Some(k) => t.nodes[t.zone_nodes[floor][k]].label().to_string(),
+            None => "outside".into(),
+        }
+    };
+    let doors: Vec<DoorAudit> = t
+        .doors
+        .iter()
+        .map(|s| {
+            let d = &b.floors[s.floor].doors[s.door];
+            let (status, reason) = nav.status[s.node].clone();
+            DoorAudit {
+                floor: s.floor,
+                floor_name: b.floors[s.floor].name.clone(),
+                id: d.id.clone(),
+                name: d.name.clone(),
+                clear_width_m: d.clear_width_m,
+                required_width_m: nav.profile.min_clearance_width(),
+                status,
+                reason,
+                grid_passable: nav.grid_passable[s.node],
+                exterior: s.exterior(),
+                zones: s.zones.iter().map(|z| zone_label(s.floor, *z)).collect(),
+                roles: d.roles.clone(),
+            }
+        })
+        .collect();
+    let transitions: Vec<TransitionAudit> = b
+        .connections
+        .iter()
+        .map(|c| {
+            let (status, reason) = c.status(&nav.profile);
+            TransitionAudit {
+                id: c.id.clone(),
+                name: c.name.clone(),
+                kind: c.kind.label(),
+                floors: c
+                    .landings
+                    .iter()
+                    .filter_map(|l| b.floors.get(l.floor).map(|f| f.name.clone()))
+                    .collect(),
+                clear_width_m: c.clear_width_m,
+                slope_deg: c.slope_deg,
+                status,
+                reason,
+            }
+        })
+        .collect();
+
+    // Where reachability starts.
+    let (starts, start_labels): (Vec<usize>, Vec<String>) = match start {
+        Some(s) => {
+            let place: Place = s.parse().map_err(NavError::Invalid)?;
+            let Target::Zone(name) = &place.target else {
+                return Err(NavError::Invalid(format!(
+                    "the audit's start must be a space, not a point: `{s}`"
+                )));
+            };
+            let floor = match &place.floor {
+                Some(f) => Some(
+                    b.floor_index(f)
+                        .ok_or_else(|| NavError::NotFound(format!("no storey named `{f}`")))?,
+                ),
+                None => None,
+            };
+            let node = t
+                .zone_node(b, name, floor)
+                .ok_or_else(|| NavError::NotFound(format!("no space named `{name}`")))?;
+            (vec![node], vec![s.to_string()])
+        }
+        None => {
+            let entrances = t.entrances();
+            let labels = entrances
+                .iter()
+                .map(|&n| t.nodes[n].label().to_string())
+                .collect();
+            (entrances, labels)
+        }
+    };
+    let open_starts: Vec<usize> = starts.iter().copied().filter(|&n| nav.open[n]).collect();
+    let (dist, _) = t.search(
+        &open_starts,
+        |n| nav.open[n].then_some(0.0),
+        |x, y| nav.connection_cost(x, y),
+    );
+    let (dist_full, _) = t.search(
+        &open_starts,
+        |n| (nav.open[n] && nav.status[n].0 != AccessibilityStatus::Restricted).then_some(0.0),
+        |x, y| nav.connection_cost(x, y),
+    );
+    let mut spaces = Vec::new();
+    for (fi, f) in b.floors.iter().enumerate() {
+        for (k, z) in f.zones.iter().enumerate() {
+            let node = t.zone_nodes[fi][k];
+            let reachable = dist[node].is_finite();
+            let restricted_only = reachable && !dist_full[node].is_finite();
+            let label = t.nodes[node].label().to_string();
+            let (blocked_by, reason) = if reachable {
+                let r = if restricted_only {
+                    "reachable only through RESTRICTED doors".to_string()
+                } else {
+                    "reachable".to_string()
+                };
+                (Vec::new(), r)
+            } else if starts.is_empty() {
+                (
+                    Vec::new(),
+                    "no entrance (exterior door) found: name a start space".to_string(),
+                )
+            } else {
+                match nav.blocking(&starts, node) {
+                    Some(bl) if !bl.is_empty() => {
+                        let names: Vec<String> = bl.iter().map(|x| x.to_string()).collect();
+                        (bl, format!("blocked by {}", names.join(", ")))
+                    }
+                    Some(_) => (
+                        Vec::new(),
+                        "no free path for the robot in the inflated grid".to_string(),
+                    ),
+                    None => (
+                        Vec::new(),
+                        "not connected to the start by any door, opening or vertical connection"
+                            .to_string(),
+                    ),
+                }
+            };
+            spaces.push(SpaceAudit {
+                floor: fi,
+                floor_name: f.name.clone(),
+                id: z.id.clone(),
+                name: Some(label),
+                reachable,
+                restricted_only,
+                blocked_by,
+                reason,
+                roles: z.roles.clone(),
+            });
+        }
+    }
+    Ok(ProfileAudit {
+        profile: nav.profile.name.clone(),
+        robot_width_m: nav.profile.width_m,
+        required_width_m: nav.profile.min_clearance_width(),
+        lethal_radius_m: nav.floors.first().map_or(0.0, |f| f.grid.lethal_radius_m),
+        inflation_radius_m: nav
+            .floors
+            .first()
+            .map_or(0.0, |f| f.grid.inflation_radius_m),
+        starts: start_labels,
+        doors,
+        transitions,
+        spaces,
+    })
+}
+
+impl AuditReport {
+    /// Messages for every `required` space (Name, LongName or GlobalId, `@Storey` optional)
+    /// that some profile cannot reach, or that does not exist; empty when all are reachable.
+    pub fn unreachable_required(&self, required: &[String]) -> Vec<String> {
+        let mut out = Vec::new();
+        for want in required {
+            let (name, floor) = match want.rsplit_once('@') {
+                Some((n, f)) => (n.trim(), Some(f.trim())),
+                None => (want.trim(), None),
+            };
+            for p in &self.profiles {
+                let hit = p.spaces.iter().find(|s| {
+                    (s.name.as_deref() == Some(name) || s.id == name)
+                        && floor.is_none_or(|f| s.floor_name == f)
+                });
+                match hit {
+                    None => out.push(format!("{}: no space named `{want}`", p.profile)),
+                    Some(s) if !s.reachable => out.push(format!(
+                        "{}: {want} is unreachable: {}",
+                        p.profile, s.reason
+                    )),
+                    Some(_) => {}
+                }
+            }
+        }
+        out
+    }
+
+    /// As JSON.
+    pub fn to_json(&self) -> serde_json::Value {
+        serde_json::to_value(self).unwrap_or(serde_json::Value::Null)
+    }
+}
+
+/// A file name part from free text: lower case letters, digits and dashes.
+pub fn slug(text: &str) -> String {
+    let mut s = String::new();
+    for c in text.chars().flat_map(char::to_lowercase) {
+        if c.is_alphanumeric() {
+            s.push(c);
+        } else if !s.ends_with('-') && !s.is_empty() {
+            s.push('-');
+        }
+    }
+    while s.ends_with('-') {
+        s.pop();
+    }
+    if s.is_empty() {
+        s.push('x');
+    }
+    s
+}
+
+fn write(path: &Path, bytes: &[u8]) -> Result<(), NavError> {
+    poinav_ifc::output::write_atomic(path, bytes).map_err(|source| NavError::Write {
+        path: path.to_path_buf(),
+        source,
+    })
+}
+
+/// The file name of the drawing of storey `floor` for profile `p` (`paper-robot-00-ground-floor.svg`).
+pub fn drawing_name(report: &AuditReport, p: usize, floor: usize) -> String {
+    format!(
+        "{}-{floor:02}-{}.svg",
+        slug(&report.profiles[p].profile),
+        slug(&report.floors[floor])
+    )
+}
+
+/// Writes `audit.json`, one SVG per profile and storey and `report.html` into `dir` (created
+/// if missing). Returns the files written.
+pub fn write_report(
+    report: &AuditReport,
+    building: &Building,
+    dir: &Path,
+) -> Result<Vec<PathBuf>, NavError> {
+    std::fs::create_dir_all(dir).map_err(|source| NavError::Write {
+        path: dir.to_path_buf(),
+        source,
+    })?;
+    let mut files = Vec::new();
+    let json = serde_json::to_string_pretty(report).unwrap_or_default() + "\n";
+    let p = dir.join("audit.json");
+    write(&p, json.as_bytes())?;
+    files.push(p);
+    let mut drawings = Vec::new();
+    for (pi, pa) in report.profiles.iter().enumerate() {
+        for (fi, floor) in building.floors.iter().enumerate() {
+            let text = svg::audit_svg(building, fi, floor, pa);
+            let p = dir.join(drawing_name(report, pi, fi));
+            write(&p, text.as_bytes())?;
+            files.push(p);
+            drawings.push((pi, fi, text));
+        }
+    }
+    let html = report_html(report, &drawings);
+    let p = dir.join("report.html");
+    write(&p, html.as_bytes())?;
+    files.push(p);
+    Ok(files)
+}
+
+/// Escapes text for HTML and XML.
+pub fn esc(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}
+
+fn report_html(report: &AuditReport, drawings: &[(usize, usize, String)]) -> String {
+    let mut h = String::new();
+    h.push_str(
+        "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>poinav accessibility audit</title>\n<style>\n\
+body{font-family:system-ui,sans-serif;margin:2em;color:#222}\n\
+table{border-collapse:collapse;margin:0.5em 0 1.5em}\n\
+td,th{border:1px solid #ccc;padding:0.25em 0.6em;text-align:left;font-size:0.9em}\n\
+th{background:#f2f2f2}\n\
+.FULL_ACCESS{background:#d7f0dc}.RESTRICTED{background:#fdecc0}.BLOCKED{background:#f8d0cc}.PENDING_VALIDATION{background:#e6e6e6}\n\
+.no{background:#f8d0cc}.yes{background:#d7f0dc}.amber{background:#fdecc0}\n\
+figure{margin:1em 0}svg{max-width:100%;height:auto;border:1px solid #ddd}\n\
+</style>\n</head>\n<body>\n<h1>Accessibility audit</h1>\n",
+    );
+    let _ = writeln!(
+        h,
+        "<p>Storeys: {}. Profiles: {}.</p>",
+        esc(&report.floors.join(", ")),
+        esc(&report
+            .profiles
+            .iter()
+            .map(|p| p.profile.as_str())
+            .collect::<Vec<_>>()
+            .join(", "))
+    );
+    for (pi, p) in report.profiles.iter().enumerate() {
+        let [full, restricted, blocked, pending] = p.door_counts();
+        let (reach, unreach) = p.space_counts();
+        let _ = writeln!(h, "<section>\n<h2>Profile {}</h2>", esc(&p.profile));
+        let _ = writeln!(
+            h,
+            "<p>Robot width {:.3} m, required clear width {:.3} m; grid inflated by {:.3} m (lethal) to {:.3} m (cost). Reachability from: {}.</p>",
+            p.robot_width_m,
+            p.required_width_m,
+            p.lethal_radius_m,
+            p.inflation_radius_m,
+            if p.starts.is_empty() {
+                "nothing (no entrance found)".to_string()
+            } else {
+                esc(&p.starts.join(", "))
+            }
+        );
+        let _ = writeln!(
+            h,
+            "<p>Doors: {full} FULL_ACCESS, {restricted} RESTRICTED, {blocked} BLOCKED, {pending} PENDING_VALIDATION. Spaces: {reach} reachable, {unreach} unreachable.</p>"
+        );
+        for (dp, fi, text) in drawings {
+            if *dp == pi {
+                let _ = writeln!(
+                    h,
+                    "<figure>\n{}\n<figcaption>{} for {}</figcaption>\n</figure>",
+                    text.replacen("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n", "", 1),
+                    esc(&report.floors[*fi]),
+                    esc(&p.profile)
+                );
+            }
+        }
+        h.push_str("<h3>Doors</h3>\n<table>\n<tr><th>storey</th><th>door</th><th>clear width</th><th>required</th><th>status</th><th>reason</th><th>free path in grid</th><th>between</th></tr>\n");
+        for d in &p.doors {
+            let _ = writeln!(
+                h,
+                "<tr><td>{}</td><td>{}</td><td>{:.3} m</td><td>{:.3} m</td><td class=\"{}\">{}</td><td>{}</td><td class=\"{}\">{}</td><td>{}</td></tr>",
+                esc(&d.floor_name),
+                esc(d.name.as_deref().unwrap_or(&d.id)),
+                d.clear_width_m,
+                d.required_width_m,
+                d.status.label(),
+                d.status.label(),
+                esc(&d.reason),
+                if d.grid_passable { "yes" } else { "no" },
+                if d.grid_passable { "yes" } else { "no" },
+                esc(&d.zones.join(" | "))
+            );
+        }
+        h.push_str("</table>\n");
+        if !p.transitions.is_empty() {
+            h.push_str("<h3>Stairs, ramps and lifts</h3>\n<table>\n<tr><th>name</th><th>kind</th><th>storeys</th><th>status</th><th>reason</th></tr>\n");
+            for c in &p.transitions {
+                let _ = writeln!(
+                    h,
+                    "<tr><td>{}</td><td>{}</td><td>{}</td><td class=\"{}\">{}</td><td>{}</td></tr>",
+                    esc(c.name.as_deref().unwrap_or(&c.id)),
+                    c.kind,
+                    esc(&c.floors.join(", ")),
+                    c.status.label(),
+                    c.status.label(),
+                    esc(&c.reason)
+                );
+            }
+            h.push_str("</table>\n");
+        }
+        h.push_str("<h3>Spaces</h3>\n<table>\n<tr><th>storey</th><th>space</th><th>reachable</th><th>reason</th></tr>\n");
+        for s in &p.spaces {
+            let class = if !s.reachable {
+                "no"
+            } else if s.restricted_only {
+                "amber"
+            } else {
+                "yes"
+            };
+            let _ = writeln!(
+                h,
+                "<tr><td>{}</td><td>{}</td><td class=\"{class}\">{}</td><td>{}</td></tr>",
+                esc(&s.floor_name),
+                esc(s.name.as_deref().unwrap_or(&s.id)),
+                if s.reachable { "yes" } else { "no" },
+                esc(&s.reason)
+            );
+        }
+        h.push_str("</table>\n</section>\n");
+    }
+    h.push_str("</body>\n</html>\n");
+    h
+}

@@ -1,0 +1,316 @@
+//! A building for navigation: its storeys as [`Floor`]s and the stairs, ramps and lifts that
+//! connect them ([`VerticalConnection`]), plus the AccessibilityStatus of doors and
+//! connections for any robot profile.
+
+use glam::DVec2;
+use poinav_poi::{AccessibilityStatus, RobotProfile};
+use serde::{Deserialize, Serialize};
+
+use crate::floor::{Floor, FloorDoor};
+
+/// Every storey and what connects them.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+pub struct Building {
+    /// Storeys, in the order they are given (usually by elevation).
+    pub floors: Vec<Floor>,
+    /// Stairs, ramps and lifts between storeys.
+    pub connections: Vec<VerticalConnection>,
+}
+
+impl Building {
+    /// A building of one storey.
+    pub fn single(floor: Floor) -> Building {
+        Building {
+            floors: vec![floor],
+            connections: Vec::new(),
+        }
+    }
+
+    /// The index of the storey with this name.
+    pub fn floor_index(&self, name: &str) -> Option<usize> {
+        self.floors.iter().position(|f| f.name == name)
+    }
+}
+
+/// What a vertical connection is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ConnectionKind {
+    /// Stairs: legged robots only.
+    Stair,
+    /// A ramp: up to the profile's maximum slope.
+    Ramp,
+    /// A lift: any robot that fits through its door.
+    Lift,
+}
+
+impl ConnectionKind {
+    /// `stair`, `ramp`, `lift`.
+    pub fn label(self) -> &'static str {
+        match self {
+            ConnectionKind::Stair => "stair",
+            ConnectionKind::Ramp => "ramp",
+            ConnectionKind::Lift => "lift",
+        }
+    }
+}
+
+/// Where a vertical connection is entered on one storey.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Landing {
+    /// Index into [`Building::floors`].
+    pub floor: usize,
+    /// The point a robot drives to (in free space beside the stair foot, ramp end or lift door).
+    pub point: DVec2,
+}
+
+/// A stair, ramp or lift connecting two or more storeys.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct VerticalConnection {
+    /// GlobalId (or a made-up id).
+    pub id: String,
+    /// Name.
+    pub name: Option<String>,
+    /// Kind.
+    pub kind: ConnectionKind,
+    /// Landings, one per storey served (at least two).
+    pub landings: Vec<Landing>,
+    /// Clear width of the flight, ramp or lift door; `None` when unknown.
+    pub clear_width_m: Option<f64>,
+    /// Ramp slope in degrees; `None` when unknown (or not a ramp).
+    pub slope_deg: Option<f64>,
+    /// Travel time between two adjacent landings in seconds (waiting for a lift included);
+    /// `None`: estimated from the storey heights (see [`VerticalConnection::travel_time_s`]).
+    pub travel_time_s: Option<f64>,
+}
+
+/// Assumed climbing speed on stairs (vertical metres per second) when no time is given.
+pub const STAIR_VERTICAL_SPEED_M_S: f64 = 0.2;
+/// Assumed lift speed (m/s) and the wait for it (s) when no time is given.
+pub const LIFT_SPEED_M_S: f64 = 1.0;
+/// See [`LIFT_SPEED_M_S`].
+pub const LIFT_WAIT_S: f64 = 30.0;
+
+impl VerticalConnection {
+    /// The label used in reports: name, else id.
+    pub fn label(&self) -> &str {
+        self.name.as_deref().unwrap_or(&self.id)
+    }
+
+    /// Seconds to travel between storeys `dz` metres apart at a speed fraction of the
+    /// profile's maximum (ramps).
+    pub fn travel_time_s(&self, dz: f64, profile: &RobotProfile) -> f64 {
+        if let Some(t) = self.travel_time_s {
+            return t;
+        }
+        let dz = dz.abs();
+        match self.kind {
+            ConnectionKind::Stair => dz / STAIR_VERTICAL_SPEED_M_S,
+            ConnectionKind::Lift => LIFT_WAIT_S + dz / LIFT_SPEED_M_S,
+            ConnectionKind::Ramp => {
+                let slope = self.slope_deg.unwrap_or(profile.max_slope_deg).max(0.5);
+                let run = dz / slope.to_radians().tan();
+                run.hypot(dz) / (0.5 * profile.max_speed_m_s)
+            }
+        }
+    }
+
+    /// AccessibilityStatus of this connection for `profile`, with the reason.
+    pub fn status(&self, profile: &RobotProfile) -> (AccessibilityStatus, String) {
+        use AccessibilityStatus::*;
+        let (kind_status, kind_reason) = match self.kind {
+            ConnectionKind::Stair if profile.climbs_stairs() => (
+                FullAccess,
+                format!("profile {} climbs stairs", profile.name),
+            ),
+            ConnectionKind::Stair => (
+                Blocked,
+                format!(
+                    "stairs are not passable for a {} robot",
+                    format!("{:?}", profile.locomotion).to_lowercase()
+                ),
+            ),
+            ConnectionKind::Ramp => match self.slope_deg {
+                Some(s) if s <= profile.max_slope_deg => (
+                    FullAccess,
+                    format!("slope {s:.1} deg <= max {:.1} deg", profile.max_slope_deg),
+                ),
+                Some(s) => (
+                    Blocked,
+                    format!("slope {s:.1} deg > max {:.1} deg", profile.max_slope_deg),
+                ),
+                None => (PendingValidation, "slope unknown".into()),
+            },
+            ConnectionKind::Lift => (FullAccess, "lift".into()),
+        };
+        if kind_status == Blocked {
+            return (kind_status, kind_reason);
+        }
+        let (width_status, width_reason) = match self.clear_width_m {
+            Some(w) => width_status(w, profile),
+            None if self.kind == ConnectionKind::Lift => {
+                (PendingValidation, "lift door width unknown".into())
+            }
+            None => return (kind_status, kind_reason),
+        };
+        let worst = worse(kind_status, width_status);
+        (worst, format!("{kind_reason}; {width_reason}"))
+    }
+}
+
+/// The worse of two statuses (BLOCKED > PENDING_VALIDATION > RESTRICTED > FULL_ACCESS).
+pub fn worse(a: AccessibilityStatus, b: AccessibilityStatus) -> AccessibilityStatus {
+    fn rank(s: AccessibilityStatus) -> u8 {
+        match s {
+            AccessibilityStatus::FullAccess => 0,
+            AccessibilityStatus::Restricted => 1,
+            AccessibilityStatus::PendingValidation => 2,
+            AccessibilityStatus::Blocked => 3,
+        }
+    }
+    if rank(a) >= rank(b) {
+        a
+    } else {
+        b
+    }
+}
+
+/// The clear-width rule of poinav-poi (docs/rules.md): at least MinClearanceWidth FULL_ACCESS,
+/// at least the robot's width RESTRICTED, else BLOCKED.
+pub fn width_status(clear_width_m: f64, profile: &RobotProfile) -> (AccessibilityStatus, String) {
+    let need = profile.min_clearance_width();
+    if !(clear_width_m.is_finite() && clear_width_m > 0.0) {
+        return (
+            AccessibilityStatus::PendingValidation,
+            "clear width unknown".into(),
+        );
+    }
+    if clear_width_m >= need {
+        (
+            AccessibilityStatus::FullAccess,
+            format!("clear width {clear_width_m:.3} m >= required {need:.3} m"),
+        )
+    } else if clear_width_m >= profile.width_m {
+        (
+            AccessibilityStatus::Restricted,
+            format!(
+                "clear width {clear_width_m:.3} m < required {need:.3} m, >= robot width {:.3} m",
+                profile.width_m
+            ),
+        )
+    } else {
+        (
+            AccessibilityStatus::Blocked,
+            format!(
+                "clear width {clear_width_m:.3} m < robot width {:.3} m",
+                profile.width_m
+            ),
+        )
+    }
+}
+
+/// AccessibilityStatus of `door` for `profile`, with the reason: the clear-width rule, except
+/// that a status stored for the same profile (same MinClearanceWidth) that is worse than the
+/// width says stands (it may come from more than width), and a door stored as BLOCKED although
+/// wide enough for its own requirement (a window) is BLOCKED for every profile.
+pub fn door_status(door: &FloorDoor, profile: &RobotProfile) -> (AccessibilityStatus, String) {
+    let (by_width, reason) = width_status(door.clear_width_m, profile);
+    let not_by_width = door.status == AccessibilityStatus::Blocked
+        && door.clear_width_m.is_finite()
+        && door.clear_width_m >= door.min_clearance_width_m;
+    let same_profile = (door.min_clearance_width_m - profile.min_clearance_width()).abs() < 1e-9;
+    if not_by_width || (same_profile && worse(door.status, by_width) != by_width) {
+        return (
+            door.status,
+            format!("{} as classified ({reason})", door.status.label()),
+        );
+    }
+    (by_width, reason)
+}
+
+/// True when a robot may pass a transition with this status (`pending_passable` decides
+/// PENDING_VALIDATION).
+pub fn passable(status: AccessibilityStatus, pending_passable: bool) -> bool {
+    match status {
+        AccessibilityStatus::FullAccess | AccessibilityStatus::Restricted => true,
+        AccessibilityStatus::Blocked => false,
+        AccessibilityStatus::PendingValidation => pending_passable,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn door(width: f64, status: AccessibilityStatus) -> FloorDoor {
+        FloorDoor {
+            id: "d".into(),
+            name: Some("Door".into()),
+            ring: vec![],
+            center: DVec2::ZERO,
+            clear_width_m: width,
+            status,
+            min_clearance_width_m: 0.9,
+            roles: vec![],
+        }
+    }
+
+    #[test]
+    fn door_status_follows_the_width_rule_per_profile() {
+        let paper = RobotProfile::paper();
+        assert_eq!(
+            door_status(&door(0.8, AccessibilityStatus::Restricted), &paper).0,
+            AccessibilityStatus::Restricted
+        );
+        assert_eq!(
+            door_status(&door(0.6, AccessibilityStatus::Restricted), &paper).0,
+            AccessibilityStatus::Blocked
+        );
+        assert_eq!(
+            door_status(&door(1.0, AccessibilityStatus::PendingValidation), &paper).0,
+            AccessibilityStatus::PendingValidation
+        );
+        // A window: BLOCKED as classified for the same profile.
+        let (s, why) = door_status(&door(1.2, AccessibilityStatus::Blocked), &paper);
+        assert_eq!(s, AccessibilityStatus::Blocked);
+        assert!(why.contains("as classified"), "{why}");
+        let mut small = paper.clone();
+        small.width_m = 0.5;
+        small.min_clearance_width_m = Some(0.6);
+        assert_eq!(
+            door_status(&door(0.6, AccessibilityStatus::Blocked), &small).0,
+            AccessibilityStatus::FullAccess
+        );
+    }
+
+    #[test]
+    fn connections_by_kind() {
+        let paper = RobotProfile::paper();
+        let c = |kind, slope| VerticalConnection {
+            id: "s".into(),
+            name: None,
+            kind,
+            landings: vec![],
+            clear_width_m: Some(1.2),
+            slope_deg: slope,
+            travel_time_s: None,
+        };
+        assert_eq!(
+            c(ConnectionKind::Stair, None).status(&paper).0,
+            AccessibilityStatus::Blocked
+        );
+        assert_eq!(
+            c(ConnectionKind::Ramp, Some(5.0)).status(&paper).0,
+            AccessibilityStatus::FullAccess
+        );
+        assert_eq!(
+            c(ConnectionKind::Ramp, Some(8.0)).status(&paper).0,
+            AccessibilityStatus::Blocked
+        );
+        assert_eq!(
+            c(ConnectionKind::Lift, None).status(&paper).0,
+            AccessibilityStatus::FullAccess
+        );
+        assert!((c(ConnectionKind::Lift, None).travel_time_s(3.0, &paper) - 33.0).abs() < 1e-9);
+    }
+}

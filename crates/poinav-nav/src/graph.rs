@@ -1,0 +1,633 @@
+//! The topology graph of a building: a node per space (zone), per door or opening and per
+//! landing of a stair, ramp or lift; edges join each door to the zones on its two sides (found
+//! from geometry: which zone lies just beyond each face of the door's passage) and each
+//! landing to its zone and to the other landings of its connection. Statuses are the
+//! profile's ([`Topology::statuses`]); the graph itself depends on geometry only.
+
+use std::collections::{BTreeMap, BinaryHeap};
+
+use glam::DVec2;
+use poinav_poi::{AccessibilityStatus, RobotProfile, Role};
+use serde::Serialize;
+
+use crate::building::{door_status, passable, Building};
+use crate::floor::Floor;
+use crate::grid::{NavGrid, NONE};
+use crate::polygon;
+
+/// What a node stands for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum NodeKind {
+    /// A space.
+    Zone,
+    /// A door or an opening.
+    Door,
+    /// Where a stair, ramp or lift is entered on one storey.
+    Landing,
+}
+
+/// A node.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Node {
+    /// Index in [`Topology::nodes`].
+    pub id: usize,
+    /// Kind.
+    pub kind: NodeKind,
+    /// Storey index.
+    pub floor: usize,
+    /// Index of the zone, door or connection within its list (`Floor::zones`, `Floor::doors`,
+    /// `Building::connections`).
+    pub index: usize,
+    /// GlobalId of the element.
+    pub element: String,
+    /// Name (zone Name, else LongName; door name; connection name).
+    pub name: Option<String>,
+    /// Position: an interior point of the zone, the door's passage centre, the landing point.
+    pub x: f64,
+    /// See `x`.
+    pub y: f64,
+    /// POI roles of the element.
+    pub roles: Vec<Role>,
+}
+
+impl Node {
+    /// Position.
+    pub fn position(&self) -> DVec2 {
+        DVec2::new(self.x, self.y)
+    }
+
+    /// The label used in reports: name, else GlobalId.
+    pub fn label(&self) -> &str {
+        self.name.as_deref().unwrap_or(&self.element)
+    }
+}
+
+/// What an edge goes through.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum EdgeKind {
+    /// Between a zone and one of its doors.
+    Door,
+    /// Between a zone and a landing in it.
+    Landing,
+    /// Between two landings of one stair, ramp or lift.
+    Connection,
+    /// Between two zones that touch without a wall or door between them (a virtual space
+    /// boundary), found in an inflated grid where the robot's centre can cross it.
+    Open,
+}
+
+/// An undirected edge.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Edge {
+    /// Index in [`Topology::edges`].
+    pub id: usize,
+    /// One end (a zone for door and landing edges).
+    pub from: usize,
+    /// The other end.
+    pub to: usize,
+    /// Kind.
+    pub kind: EdgeKind,
+    /// Straight-line length between the ends, metres (0 for connections).
+    pub length_m: f64,
+}
+
+/// One door and the zones on its two sides.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct DoorSides {
+    /// Storey index.
+    pub floor: usize,
+    /// Index in `Floor::doors`.
+    pub door: usize,
+    /// Its node.
+    pub node: usize,
+    /// Zone index on the side against the passage frame's normal and along it; `None` is
+    /// outside the building (no zone within 0.5 m).
+    pub zones: [Option<usize>; 2],
+}
+
+impl DoorSides {
+    /// True for a door with a zone on one side only: an entrance.
+    pub fn exterior(&self) -> bool {
+        self.zones[0].is_some() != self.zones[1].is_some()
+    }
+
+    /// The side (-1 or +1 along the frame's normal) that leads outside, for an exterior door.
+    pub fn outside_side(&self) -> Option<f64> {
+        match self.zones {
+            [None, Some(_)] => Some(-1.0),
+            [Some(_), None] => Some(1.0),
+            _ => None,
+        }
+    }
+}
+
+/// The building's topology.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Topology {
+    /// Nodes: zones of every storey first, then doors, then landings.
+    pub nodes: Vec<Node>,
+    /// Edges.
+    pub edges: Vec<Edge>,
+    /// Per storey and zone index: the zone's node.
+    pub zone_nodes: Vec<Vec<usize>>,
+    /// Every door with its sides, storey by storey.
+    pub doors: Vec<DoorSides>,
+    /// Per connection: its landing nodes.
+    pub landing_nodes: Vec<Vec<usize>>,
+    /// Per node: (edge, other node).
+    #[serde(skip)]
+    pub adjacency: Vec<Vec<(usize, usize)>>,
+}
+
+/// How far beyond a door's faces zones are looked for, metres.
+pub const SIDE_PROBE_M: f64 = 0.5;
+
+/// The first zone (in floor order) containing `p`.
+pub fn zone_at(floor: &Floor, p: DVec2) -> Option<usize> {
+    floor.zones.iter().position(|z| {
+        polygon::bounds(&z.ring)
+            .is_some_and(|(lo, hi)| p.x >= lo.x && p.y >= lo.y && p.x <= hi.x && p.y <= hi.y)
+            && polygon::contains(&z.ring, p)
+    })
+}
+
+/// The zones beyond the two faces of a passage frame (against and along its normal), probing
+/// up to [`SIDE_PROBE_M`] out.
+pub fn frame_zones(floor: &Floor, f: &crate::polygon::PassageFrame) -> [Option<usize>; 2] {
+    let step = 0.025;
+    let mut sides = [None, None];
+    for (s, side) in [-1.0, 1.0].into_iter().enumerate() {
+        let mut k = 1;
+        while sides[s].is_none() && (k as f64) * step <= SIDE_PROBE_M {
+            let p = f.center + f.normal * side * (f.half_depth + k as f64 * step);
+            sides[s] = zone_at(floor, p);
+            k += 1;
+        }
+    }
+    sides
+}
+
+/// The zones on the two sides of a door (see [`DoorSides::zones`]).
+pub fn door_zones(floor: &Floor, door: usize) -> [Option<usize>; 2] {
+    let d = &floor.doors[door];
+    let Some(f) = floor.door_frame(door) else {
+        // No passage ring: the two zones nearest to the centre within the probe distance.
+        let mut near: Vec<(f64, usize)> = floor
+            .zones
+            .iter()
+            .enumerate()
+            .map(|(k, z)| (polygon::area_distance(&z.ring, d.center), k))
+            .filter(|(dist, _)| *dist <= SIDE_PROBE_M)
+            .collect();
+        near.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        return [near.first().map(|n| n.1), near.get(1).map(|n| n.1)];
+    };
+    frame_zones(floor, &f)
+}
+
+impl Topology {
+    /// Builds the topology of `building` from its geometry.
+    pub fn build(building: &Building) -> Topology {
+        let mut nodes = Vec::new();
+        let mut zone_nodes = Vec::new();
+        for (fi, floor) in building.floors.iter().enumerate() {
+            let mut ids = Vec::new();
+            for (k, z) in floor.zones.iter().enumerate() {
+                let p = polygon::interior_point(&z.ring).unwrap_or(DVec2::ZERO);
+                ids.push(nodes.len());
+                nodes.push(Node {
+                    id: nodes.len(),
+                    kind: NodeKind::Zone,
+                    floor: fi,
+                    index: k,
+                    element: z.id.clone(),
+                    name: z.name.clone().or_else(|| z.long_name.clone()),
+                    x: p.x,
+                    y: p.y,
+                    roles: z.roles.clone(),
+                });
+            }
+            zone_nodes.push(ids);
+        }
+        let mut edges = Vec::new();
+        let mut doors = Vec::new();
+        for (fi, floor) in building.floors.iter().enumerate() {
+            for (k, d) in floor.doors.iter().enumerate() {
+                let p = floor.door_frame(k).map_or(d.center, |f| f.center);
+                let node = nodes.len();
+                nodes.push(Node {
+                    id: node,
+                    kind: NodeKind::Door,
+                    floor: fi,
+                    index: k,
+                    element: d.id.clone(),
+                    name: d.name.clone(),
+                    x: p.x,
+                    y: p.y,
+                    roles: d.roles.clone(),
+                });
+                let zones = door_zones(floor, k);
+                let mut linked: Vec<usize> = zones.iter().flatten().copied().collect();
+                linked.dedup();
+                for z in linked {
+                    let zn = zone_nodes[fi][z];
+                    edges.push(Edge {
+                        id: edges.len(),
+                        from: zn,
+                        to: node,
+                        kind: EdgeKind::Door,
+                        length_m: nodes[zn].position().distance(p),
+                    });
+                }
+                doors.push(DoorSides {
+                    floor: fi,
+                    door: k,
+                    node,
+                    zones,
+                });
+            }
+        }
+        let mut landing_nodes = Vec::new();
+        for (ci, c) in building.connections.iter().enumerate() {
+            let mut ids = Vec::new();
+            for l in &c.landings {
+                let Some(floor) = building.floors.get(l.floor) else {
+                    continue;
+                };
+                let node = nodes.len();
+                nodes.push(Node {
+                    id: node,
+                    kind: NodeKind::Landing,
+                    floor: l.floor,
+                    index: ci,
+                    element: c.id.clone(),
+                    name: c.name.clone(),
+                    x: l.point.x,
+                    y: l.point.y,
+                    roles: Vec::new(),
+                });
+                let zone = zone_at(floor, l.point).or_else(|| {
+                    floor
+                        .zones
+                        .iter()
+                        .enumerate()
+                        .map(|(k, z)| (polygon::area_distance(&z.ring, l.point), k))
+                        .filter(|(d, _)| *d <= SIDE_PROBE_M)
+                        .min_by(|a, b| a.0.total_cmp(&b.0))
+                        .map(|(_, k)| k)
+                });
+                if let Some(z) = zone {
+                    let zn = zone_nodes[l.floor][z];
+                    edges.push(Edge {
+                        id: edges.len(),
+                        from: zn,
+                        to: node,
+                        kind: EdgeKind::Landing,
+                        length_m: nodes[zn].position().distance(l.point),
+                    });
+                }
+                ids.push(node);
+            }
+            for w in ids.windows(2) {
+                edges.push(Edge {
+                    id: edges.len(),
+                    from: w[0],
+                    to: w[1],
+                    kind: EdgeKind::Connection,
+                    length_m: 0.0,
+                });
+            }
+            landing_nodes.push(ids);
+        }
+        let mut adjacency = vec![Vec::new(); nodes.len()];
+        for e in &edges {
+            adjacency[e.from].push((e.id, e.to));
+            adjacency[e.to].push((e.id, e.from));
+        }
+        Topology {
+            nodes,
+            edges,
+            zone_nodes,
+            doors,
+            landing_nodes,
+            adjacency,
+        }
+    }
+
+    /// Adds an [`EdgeKind::Open`] edge between every two zones of storey `floor` whose
+    /// traversable cells touch (4-neighbours, neither in a door) in `grid` along at least
+    /// `min_cells` cell pairs.
+    pub fn add_open_boundaries(&mut self, floor: usize, grid: &NavGrid, min_cells: usize) {
+        let g = &grid.occupancy;
+        let mut pairs: BTreeMap<(u32, u32), usize> = BTreeMap::new();
+        let ok = |i: usize| g.zone[i] != NONE && g.door[i] == NONE && grid.traversable(i);
+        for r in 0..g.height {
+            for c in 0..g.width {
+                let i = r * g.width + c;
+                if !ok(i) {
+                    continue;
+                }
+                let mut check = |j: usize| {
+                    if ok(j) && g.zone[j] != g.zone[i] {
+                        let (a, b) = (g.zone[i].min(g.zone[j]), g.zone[i].max(g.zone[j]));
+                        *pairs.entry((a, b)).or_default() += 1;
+                    }
+                };
+                if c + 1 < g.width {
+                    check(i + 1);
+                }
+                if r + 1 < g.height {
+                    check(i + g.width);
+                }
+            }
+        }
+        for ((a, b), count) in pairs {
+            if count < min_cells.max(1) {
+                continue;
+            }
+            let (na, nb) = (
+                self.zone_nodes[floor][a as usize],
+                self.zone_nodes[floor][b as usize],
+            );
+            let id = self.edges.len();
+            self.edges.push(Edge {
+                id,
+                from: na,
+                to: nb,
+                kind: EdgeKind::Open,
+                length_m: self.nodes[na]
+                    .position()
+                    .distance(self.nodes[nb].position()),
+            });
+            self.adjacency[na].push((id, nb));
+            self.adjacency[nb].push((id, na));
+        }
+    }
+
+    /// The door entry of storey `floor`'s door `door`.
+    pub fn door(&self, floor: usize, door: usize) -> Option<&DoorSides> {
+        self.doors
+            .iter()
+            .find(|d| d.floor == floor && d.door == door)
+    }
+
+    /// The node of a zone named `name` (Name or LongName) on storey `floor` (any storey when
+    /// `None`; the first match).
+    pub fn zone_node(
+        &self,
+        building: &Building,
+        name: &str,
+        floor: Option<usize>,
+    ) -> Option<usize> {
+        for (fi, f) in building.floors.iter().enumerate() {
+            if floor.is_some_and(|x| x != fi) {
+                continue;
+            }
+            if let Some(k) = f.zones.iter().position(|z| {
+                z.name.as_deref() == Some(name)
+                    || z.long_name.as_deref() == Some(name)
+                    || z.id == name
+            }) {
+                return Some(self.zone_nodes[fi][k]);
+            }
+        }
+        None
+    }
+
+    /// The status (and reason) of every door and landing node for `profile`; zones are
+    /// always passable (FULL_ACCESS).
+    pub fn statuses(
+        &self,
+        building: &Building,
+        profile: &RobotProfile,
+    ) -> Vec<(AccessibilityStatus, String)> {
+        self.nodes
+            .iter()
+            .map(|n| match n.kind {
+                NodeKind::Zone => (AccessibilityStatus::FullAccess, String::new()),
+                NodeKind::Door => door_status(&building.floors[n.floor].doors[n.index], profile),
+                NodeKind::Landing => building.connections[n.index].status(profile),
+            })
+            .collect()
+    }
+
+    /// Entrances: the nodes of exterior doors.
+    pub fn entrances(&self) -> Vec<usize> {
+        self.doors
+            .iter()
+            .filter(|d| d.exterior())
+            .map(|d| d.node)
+            .collect()
+    }
+
+    /// Shortest paths from `starts`: edges cost their length (connections
+    /// `connection_cost(a, b)`), entering a node costs `node_cost(node)`, and `None` there
+    /// closes the node. Returns per node the distance and the previous node (`usize::MAX` for
+    /// starts and unreached nodes).
+    pub fn search(
+        &self,
+        starts: &[usize],
+        node_cost: impl Fn(usize) -> Option<f64>,
+        connection_cost: impl Fn(usize, usize) -> f64,
+    ) -> (Vec<f64>, Vec<usize>) {
+        let n = self.nodes.len();
+        let mut dist = vec![f64::INFINITY; n];
+        let mut prev = vec![usize::MAX; n];
+        let mut heap = BinaryHeap::new();
+        for &s in starts {
+            if s < n && dist[s] > 0.0 {
+                dist[s] = 0.0;
+                heap.push(HeapItem(0.0, s));
+            }
+        }
+        while let Some(HeapItem(d, u)) = heap.pop() {
+            if d > dist[u] {
+                continue;
+            }
+            for &(e, v) in &self.adjacency[u] {
+                let Some(extra) = node_cost(v) else {
+                    continue;
+                };
+                let w = match self.edges[e].kind {
+                    EdgeKind::Connection => connection_cost(u, v),
+                    _ => self.edges[e].length_m,
+                };
+                let nd = d + w + extra;
+                if nd < dist[v] {
+                    dist[v] = nd;
+                    prev[v] = u;
+                    heap.push(HeapItem(nd, v));
+                }
+            }
+        }
+        (dist, prev)
+    }
+
+    /// The node path ending at `goal` from [`Topology::search`]'s `prev`.
+    pub fn path_to(prev: &[usize], goal: usize) -> Vec<usize> {
+        let mut path = vec![goal];
+        let mut at = goal;
+        while prev[at] != usize::MAX {
+            at = prev[at];
+            path.push(at);
+            if path.len() > prev.len() {
+                break;
+            }
+        }
+        path.reverse();
+        path
+    }
+
+    /// The graph as JSON for `profile`: storeys, nodes, and edges carrying the door's or
+    /// connection's clear width, status, reason and roles.
+    pub fn to_json(&self, building: &Building, profile: &RobotProfile) -> serde_json::Value {
+        let statuses = self.statuses(building, profile);
+        let floors: Vec<serde_json::Value> = building
+            .floors
+            .iter()
+            .enumerate()
+            .map(|(i, f)| serde_json::json!({"index": i, "name": f.name, "elevation_m": f.elevation_m}))
+            .collect();
+        let nodes: Vec<serde_json::Value> = self
+            .nodes
+            .iter()
+            .map(|n| {
+                let mut v = serde_json::json!({
+                    "id": n.id,
+                    "kind": n.kind,
+                    "floor": n.floor,
+                    "element": n.element,
+                    "name": n.name,
+                    "x": round6(n.x),
+                    "y": round6(n.y),
+                    "roles": n.roles,
+                });
+                match n.kind {
+                    NodeKind::Door => {
+                        let sides = self.door(n.floor, n.index);
+                        v["exterior"] = serde_json::json!(sides.is_some_and(|s| s.exterior()));
+                        v["status"] = serde_json::json!(statuses[n.id].0);
+                        v["reason"] = serde_json::json!(statuses[n.id].1);
+                    }
+                    NodeKind::Landing => {
+                        let c = &building.connections[n.index];
+                        v["connection"] = serde_json::json!(c.kind.label());
+                        v["status"] = serde_json::json!(statuses[n.id].0);
+                        v["reason"] = serde_json::json!(statuses[n.id].1);
+                    }
+                    NodeKind::Zone => {
+                        let z = &building.floors[n.floor].zones[n.index];
+                        v["long_name"] = serde_json::json!(z.long_name);
+                        if let Some((sep, protocol)) = z.coordination {
+                            v["coordination"] = serde_json::json!({
+                                "min_separation_m": sep,
+                                "protocol": protocol,
+                            });
+                        }
+                    }
+                }
+                v
+            })
+            .collect();
+        let edges: Vec<serde_json::Value> = self
+            .edges
+            .iter()
+            .map(|e| {
+                let through = &self.nodes[e.to];
+                let mut v = serde_json::json!({
+                    "id": e.id,
+                    "from": e.from,
+                    "to": e.to,
+                    "kind": e.kind,
+                    "length_m": round6(e.length_m),
+                });
+                match through.kind {
+                    NodeKind::Door => {
+                        let d = &building.floors[through.floor].doors[through.index];
+                        v["via"] = serde_json::json!(d.id);
+                        v["name"] = serde_json::json!(d.name);
+                        v["clear_width_m"] = serde_json::json!(d.clear_width_m);
+                        v["required_width_m"] = serde_json::json!(profile.min_clearance_width());
+                        v["status"] = serde_json::json!(statuses[through.id].0);
+                        v["reason"] = serde_json::json!(statuses[through.id].1);
+                        v["roles"] = serde_json::json!(d.roles);
+                    }
+                    NodeKind::Landing => {
+                        let c = &building.connections[through.index];
+                        v["via"] = serde_json::json!(c.id);
+                        v["name"] = serde_json::json!(c.name);
+                        v["connection"] = serde_json::json!(c.kind.label());
+                        v["clear_width_m"] = serde_json::json!(c.clear_width_m);
+                        v["required_width_m"] = serde_json::json!(profile.min_clearance_width());
+                        v["status"] = serde_json::json!(statuses[through.id].0);
+                        v["reason"] = serde_json::json!(statuses[through.id].1);
+                    }
+                    NodeKind::Zone => {}
+                }
+                v
+            })
+            .collect();
+        serde_json::json!({
+            "format": "poinav-topology",
+            "version": 1,
+            "profile": {
+                "name": profile.name,
+                "width_m": profile.width_m,
+                "min_clearance_width_m": profile.min_clearance_width(),
+            },
+            "floors": floors,
+            "nodes": nodes,
+            "edges": edges,
+        })
+    }
+
+    /// Nodes passable for `profile` (zones always; doors and landings by status, PENDING by
+    /// `pending_passable`).
+    pub fn open_nodes(
+        &self,
+        building: &Building,
+        profile: &RobotProfile,
+        pending_passable: bool,
+    ) -> Vec<bool> {
+        self.statuses(building, profile)
+            .iter()
+            .map(|(s, _)| passable(*s, pending_passable))
+            .collect()
+    }
+
+    /// Zone names per storey, for messages: `Room 2` or its GlobalId.
+    pub fn zone_labels(&self) -> BTreeMap<usize, String> {
+        self.nodes
+            .iter()
+            .filter(|n| n.kind == NodeKind::Zone)
+            .map(|n| (n.id, n.label().to_string()))
+            .collect()
+    }
+}
+
+/// Rounds to micrometres for stable JSON.
+pub fn round6(v: f64) -> f64 {
+    (v * 1e6).round() / 1e6
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct HeapItem(f64, usize);
+
+impl Eq for HeapItem {}
+
+impl Ord for HeapItem {
+    fn cmp(&self, other: &Self) -> std::cmp::Ordering {
+        other
+            .0
+            .total_cmp(&self.0)
+            .then_with(|| other.1.cmp(&self.1))
+    }
+}
+
+impl PartialOrd for HeapItem {
+    fn partial_cmp(&self, other: &Self) -> Option<std::cmp::Ordering> {
+        Some(self.cmp(other))
+    }
+}

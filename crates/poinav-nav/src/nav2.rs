@@ -1,0 +1,728 @@
+//! The Nav2 bundle of a building for one robot profile, one folder per storey:
+//!
+//! - `map.yaml` + `map.pgm` for nav2_map_server (trinary: 0 occupied, 254 free, 205 unknown,
+//!   first row = largest y, thresholds 0.65 / 0.196, origin = the lower-left pixel, yaw 0). Not
+//!   inflated (Nav2's inflation layer does that); BLOCKED doors are drawn closed. The free
+//!   threshold is 0.196, not Nav2's default 0.25, under which 205 would load as free
+//!   ([`Nav2Options::free_thresh`]).
+//! - `keepout_mask.yaml` + `.pgm`: mask value 100 (black) on BLOCKED doors and on stairs or
+//!   ramps the profile cannot use, free elsewhere (trinary).
+//! - `speed_mask.yaml` + `.pgm`: mode scale with thresholds 0 and 1 so a pixel decodes to the
+//!   mask value `100 - speed percent` of its zone's or door's roles (B-1, B-2, C-1), 0 (no
+//!   limit) elsewhere.
+//! - `costmap_filter_info.yaml`: parameters of two costmap_filter_info_server nodes, keepout
+//!   (type 0, base 0, multiplier 1) and speed (type 1, percent: limit = 100 - mask, base 100,
+//!   multiplier -1).
+//! - `route_graph.geojson`: the nav2_route graph: Point nodes (zones, doors, landings and the
+//!   corners of the grid paths between them) and MultiLineString edges (id, startid, endid,
+//!   cost in seconds, overridable, metadata with speed_limit in percent and abs_speed_limit in
+//!   m/s), every edge in both directions, ids unique across nodes and edges.
+//!
+//! and `README.md` (how to load it) and `topology.json` (the building's graph for the profile)
+//! at the top. Every file is written atomically; the same input gives the same bytes.
+
+use std::collections::BTreeSet;
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use glam::DVec2;
+use poinav_poi::{AccessibilityStatus, RobotProfile};
+use serde::Serialize;
+use serde_json::json;
+
+use crate::audit::slug;
+use crate::building::Building;
+use crate::floor::ObstacleKind;
+use crate::graph::{round6, EdgeKind, NodeKind};
+use crate::grid::{CellState, OccupancyGrid, NONE};
+use crate::navigator::{NavOptions, Navigator};
+use crate::route::{astar_window, simplify, window_of, CellCost};
+use crate::NavError;
+
+/// How the bundle is made.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Nav2Options {
+    /// Grids, inflation, speeds.
+    pub nav: NavOptions,
+    /// The map frame named in the route graph.
+    pub frame: String,
+    /// Connect each door or landing of a zone to this many nearest others in the route graph
+    /// (besides the zone's own node).
+    pub neighbours: usize,
+    /// `free_thresh` of `map.yaml` and `keepout_mask.yaml`. Default 0.196 (ROS 1's map_saver
+    /// value): with Nav2's own default 0.25, the unknown grey 205 (p = 50 / 255 = 0.196) loads
+    /// as free, so the outside of the building would become free space.
+    pub free_thresh: f64,
+}
+
+impl Default for Nav2Options {
+    fn default() -> Self {
+        Nav2Options {
+            nav: NavOptions::default(),
+            frame: "map".into(),
+            neighbours: 2,
+            free_thresh: 0.196,
+        }
+    }
+}
+
+/// What was written for one storey.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct StoreyBundle {
+    /// Storey name.
+    pub floor: String,
+    /// Folder (relative to the bundle).
+    pub folder: String,
+    /// Map size in cells.
+    pub width: usize,
+    /// Rows.
+    pub height: usize,
+    /// Origin [x, y] of the lower-left pixel.
+    pub origin: [f64; 2],
+    /// Cells with keepout 100.
+    pub keepout_cells: usize,
+    /// Cells with a speed limit.
+    pub speed_cells: usize,
+    /// Route graph nodes and (directed) edges.
+    pub graph_nodes: usize,
+    /// Directed edges.
+    pub graph_edges: usize,
+}
+
+/// What was written.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct BundleSummary {
+    /// Profile name.
+    pub profile: String,
+    /// Per storey.
+    pub storeys: Vec<StoreyBundle>,
+    /// Every file written.
+    pub files: Vec<PathBuf>,
+}
+
+/// The binary PGM (P5) of a grid of 8-bit values, first row = largest y.
+pub fn pgm(width: usize, height: usize, value: impl Fn(usize) -> u8) -> Vec<u8> {
+    let mut out = format!("P5\n{width} {height}\n255\n").into_bytes();
+    out.reserve(width * height);
+    for row in (0..height).rev() {
+        for col in 0..width {
+            out.push(value(row * width + col));
+        }
+    }
+    out
+}
+
+/// The map_server YAML for an image.
+pub fn map_yaml(grid: &OccupancyGrid, image: &str, mode: &str, occupied: f64, free: f64) -> String {
+    format!(
+        "image: {image}\nmode: {mode}\nresolution: {}\norigin: [{}, {}, 0.0]\nnegate: 0\noccupied_thresh: {occupied:?}\nfree_thresh: {free:?}\n",
+        grid.resolution_m,
+        round6(grid.origin.x),
+        round6(grid.origin.y),
+    )
+}
+
+/// The PGM grey level that nav2_map_server in scale mode (free_thresh 0, occupied_thresh 1,
+/// negate 0) decodes to `value` (0-100): `rint((1 - x / 255) * 100) == value`.
+pub fn scale_pixel(value: u8) -> u8 {
+    let v = f64::from(value.min(100));
+    let guess = (255.0 * (1.0 - v / 100.0)).round() as i32;
+    for d in [0, -1, 1, -2, 2] {
+        let x = (guess + d).clamp(0, 255);
+        if ((1.0 - f64::from(x) / 255.0) * 100.0).round_ties_even() == v {
+            return x as u8;
+        }
+    }
+    guess.clamp(0, 255) as u8
+}
+
+fn write(files: &mut Vec<PathBuf>, path: PathBuf, bytes: &[u8]) -> Result<(), NavError> {
+    poinav_ifc::output::write_atomic(&path, bytes).map_err(|source| NavError::Write {
+        path: path.clone(),
+        source,
+    })?;
+    files.push(path);
+    Ok(())
+}
+
+/// Writes the bundle of `building` for `profile` into `dir` (created if missing).
+pub fn write_bundle(
+    building: &Building,
+    profile: &RobotProfile,
+    options: &Nav2Options,
+    dir: &Path,
+) -> Result<BundleSummary, NavError> {
+    let nav = Navigator::new(building, profile, &options.nav)?;
+    write_navigator_bundle(&nav, options, dir)
+}
+
+/// Writes the bundle of a prepared building.
+pub fn write_navigator_bundle(
+    nav: &Navigator<'_>,
+    options: &Nav2Options,
+    dir: &Path,
+) -> Result<BundleSummary, NavError> {
+    let mkdir = |d: &Path| {
+        std::fs::create_dir_all(d).map_err(|source| NavError::Write {
+            path: d.to_path_buf(),
+            source,
+        })
+    };
+    mkdir(dir)?;
+    let mut files = Vec::new();
+    let mut storeys = Vec::new();
+    for (fi, floor) in nav.building.floors.iter().enumerate() {
+        let folder = format!("{fi:02}-{}", slug(&floor.name));
+        let sub = dir.join(&folder);
+        mkdir(&sub)?;
+        let fnav = &nav.floors[fi];
+        let g = &fnav.grid.occupancy;
+
+        let map = pgm(g.width, g.height, |i| match g.cells[i] {
+            CellState::Free => 254,
+            CellState::Occupied => 0,
+            CellState::Unknown => 205,
+        });
+        write(&mut files, sub.join("map.pgm"), &map)?;
+        write(
+            &mut files,
+            sub.join("map.yaml"),
+            map_yaml(g, "map.pgm", "trinary", 0.65, options.free_thresh).as_bytes(),
+        )?;
+
+        let keepout = keepout_mask(nav, fi);
+        let keepout_cells = keepout.iter().filter(|k| **k).count();
+        let img = pgm(g.width, g.height, |i| if keepout[i] { 0 } else { 254 });
+        write(&mut files, sub.join("keepout_mask.pgm"), &img)?;
+        write(
+            &mut files,
+            sub.join("keepout_mask.yaml"),
+            map_yaml(g, "keepout_mask.pgm", "trinary", 0.65, options.free_thresh).as_bytes(),
+        )?;
+
+        let mut speed_cells = 0;
+        let values: Vec<u8> = (0..g.len())
+            .map(|i| {
+                if g.cells[i] == CellState::Unknown {
+                    return 0;
+                }
+                let f = fnav.speed(i);
+                if f >= 1.0 {
+                    0
+                } else {
+                    speed_cells += 1;
+                    let percent = (f * 100.0).round().clamp(1.0, 100.0);
+                    (100.0 - percent) as u8
+                }
+            })
+            .collect();
+        let img = pgm(g.width, g.height, |i| scale_pixel(values[i]));
+        write(&mut files, sub.join("speed_mask.pgm"), &img)?;
+        write(
+            &mut files,
+            sub.join("speed_mask.yaml"),
+            map_yaml(g, "speed_mask.pgm", "scale", 1.0, 0.0).as_bytes(),
+        )?;
+        write(
+            &mut files,
+            sub.join("costmap_filter_info.yaml"),
+            filter_info(&nav.options.speeds).as_bytes(),
+        )?;
+
+        let graph = route_graph(nav, fi, options);
+        let n_nodes = graph["features"].as_array().map_or(0, |f| {
+            f.iter()
+                .filter(|x| x["geometry"]["type"] == "Point")
+                .count()
+        });
+        let n_edges = graph["features"].as_array().map_or(0, |f| f.len()) - n_nodes;
+        let text = serde_json::to_string_pretty(&graph).unwrap_or_default() + "\n";
+        write(&mut files, sub.join("route_graph.geojson"), text.as_bytes())?;
+
+        storeys.push(StoreyBundle {
+            floor: floor.name.clone(),
+            folder,
+            width: g.width,
+            height: g.height,
+            origin: [round6(g.origin.x), round6(g.origin.y)],
+            keepout_cells,
+            speed_cells,
+            graph_nodes: n_nodes,
+            graph_edges: n_edges,
+        });
+    }
+    let topo = nav.topology.to_json(nav.building, &nav.profile);
+    let text = serde_json::to_string_pretty(&topo).unwrap_or_default() + "\n";
+    write(&mut files, dir.join("topology.json"), text.as_bytes())?;
+    write(
+        &mut files,
+        dir.join("README.md"),
+        readme(nav, options, &storeys).as_bytes(),
+    )?;
+    Ok(BundleSummary {
+        profile: nav.profile.name.clone(),
+        storeys,
+        files,
+    })
+}
+
+/// Cells a robot must never enter: BLOCKED doors' passages and stairs or ramps it cannot use.
+fn keepout_mask(nav: &Navigator<'_>, fi: usize) -> Vec<bool> {
+    let floor = &nav.building.floors[fi];
+    let g = &nav.floors[fi].grid.occupancy;
+    let mut mask = vec![false; g.len()];
+    let blocked_doors: Vec<bool> = g
+        .doors
+        .iter()
+        .map(|d| d.status == AccessibilityStatus::Blocked)
+        .collect();
+    for (m, &d) in mask.iter_mut().zip(&g.door) {
+        if d != NONE && blocked_doors[d as usize] {
+            *m = true;
+        }
+    }
+    for o in floor
+        .obstacles
+        .iter()
+        .filter(|o| o.kind == ObstacleKind::Transition)
+    {
+        let status = match nav.building.connections.iter().find(|c| c.id == o.id) {
+            Some(c) => c.status(&nav.profile).0,
+            None if o.class.to_ascii_lowercase().contains("stair") => {
+                if nav.profile.climbs_stairs() {
+                    AccessibilityStatus::FullAccess
+                } else {
+                    AccessibilityStatus::Blocked
+                }
+            }
+            None => AccessibilityStatus::PendingValidation,
+        };
+        if status == AccessibilityStatus::Blocked {
+            for ring in &o.rings {
+                for_cells(g, ring, |i| mask[i] = true);
+            }
+        }
+    }
+    mask
+}
+
+fn for_cells(g: &OccupancyGrid, ring: &[DVec2], mut f: impl FnMut(usize)) {
+    let Some((lo, hi)) = crate::polygon::bounds(ring) else {
+        return;
+    };
+    let (Some(a), Some(b)) = (
+        g.cell_of(lo.max(g.origin)),
+        g.cell_of(
+            hi.min(g.origin + DVec2::new(g.width as f64, g.height as f64) * g.resolution_m - 1e-9),
+        ),
+    ) else {
+        return;
+    };
+    let (c0, r0, c1, r1) = (a % g.width, a / g.width, b % g.width, b / g.width);
+    for r in r0..=r1 {
+        for c in c0..=c1 {
+            let i = r * g.width + c;
+            if crate::polygon::contains(ring, g.center(i)) {
+                f(i);
+            }
+        }
+    }
+}
+
+fn filter_info(speeds: &crate::speed::RoleSpeeds) -> String {
+    let pct = |f: f64| (f * 100.0).round();
+    format!(
+        "# Parameters for two nav2_map_server costmap_filter_info_server nodes.\n\
+# Keepout: mask value 100 (black in keepout_mask.pgm) = never enter (BLOCKED doors, stairs or\n\
+# ramps this robot cannot use); 0 = free. Filter value = base + multiplier * mask.\n\
+# Speed: filter value = 100 - mask = speed limit in percent of the robot's maximum; mask 0 =\n\
+# no limit. Role speeds: B-1 hazard {}%, B-2 narrow {}%, C-1 SPEED_REDUCTION {}%,\n\
+# C-1 YIELD {}%, C-1 PRIORITY_PASS {}%, C-1 without protocol {}%.\n\
+keepout_filter_info_server:\n  ros__parameters:\n    type: 0\n    filter_info_topic: \"keepout_filter_info\"\n    mask_topic: \"keepout_filter_mask\"\n    base: 0.0\n    multiplier: 1.0\n\
+speed_filter_info_server:\n  ros__parameters:\n    type: 1\n    filter_info_topic: \"speed_filter_info\"\n    mask_topic: \"speed_filter_mask\"\n    base: 100.0\n    multiplier: -1.0\n",
+        pct(speeds.hazard),
+        pct(speeds.narrow),
+        pct(speeds.speed_reduction),
+        pct(speeds.yield_protocol),
+        pct(speeds.priority_pass),
+        pct(speeds.multi_robot),
+    )
+}
+
+/// A node of the route graph being built.
+struct GNode {
+    p: DVec2,
+    meta: serde_json::Value,
+}
+
+/// The nav2_route GeoJSON graph of storey `fi`.
+pub fn route_graph(nav: &Navigator<'_>, fi: usize, options: &Nav2Options) -> serde_json::Value {
+    let t = &nav.topology;
+    let fnav = &nav.floors[fi];
+    let grid = &fnav.grid;
+    let g = &grid.occupancy;
+    let floor = &nav.building.floors[fi];
+    let costs = CellCost {
+        floor: fnav,
+        base: 1.0 / nav.profile.max_speed_m_s,
+    };
+    let mut nodes: Vec<GNode> = Vec::new();
+    let mut edges: BTreeSet<(usize, usize)> = BTreeSet::new();
+    let mut edge_meta: Vec<((usize, usize), serde_json::Value)> = Vec::new();
+    let mut waypoints: std::collections::BTreeMap<usize, usize> = std::collections::BTreeMap::new();
+    // Topology node -> (graph node, cell).
+    let mut port: Vec<Option<(usize, usize)>> = vec![None; t.nodes.len()];
+    for n in t.nodes.iter().filter(|n| n.floor == fi) {
+        let cell = match n.kind {
+            NodeKind::Zone => nav.zone_cell(fi, n.index),
+            NodeKind::Door => {
+                if !nav.open[n.id] {
+                    continue;
+                }
+                grid.nearest_traversable(n.position(), 0.5)
+            }
+            NodeKind::Landing => {
+                if !nav.open[n.id] {
+                    continue;
+                }
+                grid.nearest_traversable(n.position(), 1.0)
+            }
+        };
+        let Some(cell) = cell else { continue };
+        let mut meta = json!({
+            "kind": n.kind,
+            "element": n.element,
+            "name": n.name,
+        });
+        match n.kind {
+            NodeKind::Door => {
+                let d = &floor.doors[n.index];
+                meta["status"] = json!(nav.status[n.id].0);
+                meta["clear_width_m"] = json!(d.clear_width_m);
+            }
+            NodeKind::Landing => {
+                let c = &nav.building.connections[n.index];
+                meta["connection"] = json!(c.kind.label());
+                meta["status"] = json!(nav.status[n.id].0);
+                let others: Vec<&str> = c
+                    .landings
+                    .iter()
+                    .filter(|l| l.floor != fi)
+                    .filter_map(|l| nav.building.floors.get(l.floor).map(|f| f.name.as_str()))
+                    .collect();
+                meta["to_floors"] = json!(others);
+            }
+            NodeKind::Zone => {}
+        }
+        port[n.id] = Some((nodes.len(), cell));
+        nodes.push(GNode {
+            p: g.center(cell),
+            meta,
+        });
+    }
+    // Pairs to join, per zone: its node and its doors and landings ("ports"), each to its
+    // nearest `neighbours` others, plus a minimum spanning tree (by straight distance) so the
+    // zone's part of the graph is connected; zones joined by open boundaries.
+    let mut pairs: BTreeSet<(usize, usize)> = BTreeSet::new();
+    for &zn in &t.zone_nodes[fi] {
+        if port[zn].is_none() {
+            continue;
+        }
+        let mut pts: Vec<usize> = vec![zn];
+        pts.extend(
+            t.adjacency[zn]
+                .iter()
+                .filter(|(e, v)| {
+                    matches!(t.edges[*e].kind, EdgeKind::Door | EdgeKind::Landing)
+                        && port[*v].is_some()
+                })
+                .map(|&(_, v)| v),
+        );
+        let pos = |n: usize| port[n].map_or(DVec2::ZERO, |x| nodes[x.0].p);
+        for &p in &pts {
+            let mut near: Vec<(f64, usize)> = pts
+                .iter()
+                .filter(|&&q| q != p)
+                .map(|&q| (pos(q).distance(pos(p)), q))
+                .collect();
+            near.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+            for &(_, q) in near.iter().take(options.neighbours.max(1)) {
+                pairs.insert((p.min(q), p.max(q)));
+            }
+        }
+        // Prim's tree.
+        let mut in_tree = vec![false; pts.len()];
+        let mut best: Vec<(f64, usize)> = vec![(f64::INFINITY, 0); pts.len()];
+        best[0] = (0.0, 0);
+        for _ in 0..pts.len() {
+            let Some(u) = (0..pts.len())
+                .filter(|&i| !in_tree[i])
+                .min_by(|&a, &b| best[a].0.total_cmp(&best[b].0).then(a.cmp(&b)))
+            else {
+                break;
+            };
+            in_tree[u] = true;
+            if u != 0 {
+                let (x, y) = (pts[u], pts[best[u].1]);
+                pairs.insert((x.min(y), x.max(y)));
+            }
+            for v in 0..pts.len() {
+                let d = pos(pts[u]).distance(pos(pts[v]));
+                if !in_tree[v] && d < best[v].0 {
+                    best[v] = (d, u);
+                }
+            }
+        }
+    }
+    for e in t.edges.iter().filter(|e| e.kind == EdgeKind::Open) {
+        if t.nodes[e.from].floor == fi && port[e.from].is_some() && port[e.to].is_some() {
+            pairs.insert((e.from.min(e.to), e.from.max(e.to)));
+        }
+    }
+    for (a, b) in pairs {
+        let (Some((ga, ca)), Some((gb, cb))) = (port[a], port[b]) else {
+            continue;
+        };
+        // Cells allowed: the zone both ends are in (or, for zones joined by an open
+        // boundary, both zones) and the doors at the ends.
+        let (za, zb) = (zones_of(nav, a, fi), zones_of(nav, b, fi));
+        let shared: BTreeSet<usize> = za.intersection(&zb).copied().collect();
+        let zones = if shared.is_empty() {
+            za.union(&zb).copied().collect()
+        } else {
+            shared
+        };
+        let mut zones_ok = vec![false; floor.zones.len()];
+        for z in zones {
+            zones_ok[z] = true;
+        }
+        let mut doors_ok = vec![false; floor.doors.len()];
+        for n in [a, b] {
+            if t.nodes[n].kind == NodeKind::Door {
+                doors_ok[t.nodes[n].index] = true;
+            }
+        }
+        let allowed = |i: usize| {
+            let z = g.zone[i];
+            let d = g.door[i];
+            (z == NONE || zones_ok[z as usize]) && (d == NONE || doors_ok[d as usize])
+        };
+        let cost = |i: usize| costs.cost(i);
+        // Search only the box around the allowed zones and doors.
+        let window = window_of(floor, g, &zones_ok, &doors_ok, &[ca, cb]);
+        let Some(path) = astar_window(grid, window, ca, cb, allowed, cost, costs.base) else {
+            continue;
+        };
+        let line = simplify(grid, &path, &allowed, &cost);
+        // Corners become waypoint nodes (one per cell, shared by the paths through it).
+        let mut ids = vec![ga];
+        for p in &line[1..line.len().saturating_sub(1)] {
+            let cell = g.cell_of(*p).unwrap_or(usize::MAX);
+            let id = *waypoints.entry(cell).or_insert_with(|| {
+                nodes.push(GNode {
+                    p: *p,
+                    meta: json!({"kind": "waypoint"}),
+                });
+                nodes.len() - 1
+            });
+            ids.push(id);
+        }
+        ids.push(gb);
+        ids.dedup();
+        for w in ids.windows(2) {
+            let (p, q) = (nodes[w[0]].p, nodes[w[1]].p);
+            let mut slowest: f64 = 1.0;
+            let mut zone_names: BTreeSet<String> = BTreeSet::new();
+            let mut door_names: BTreeSet<String> = BTreeSet::new();
+            let len = p.distance(q);
+            let n = ((len / (g.resolution_m / 4.0)).ceil() as usize).max(1);
+            for k in 0..=n {
+                if let Some(i) = g.cell_of(p.lerp(q, k as f64 / n as f64)) {
+                    slowest = slowest.min(fnav.speed(i));
+                    if g.zone[i] != NONE {
+                        let z = &floor.zones[g.zone[i] as usize];
+                        zone_names.insert(
+                            z.name
+                                .clone()
+                                .or_else(|| z.long_name.clone())
+                                .unwrap_or_else(|| z.id.clone()),
+                        );
+                    }
+                    if g.door[i] != NONE {
+                        let d = &floor.doors[g.door[i] as usize];
+                        door_names.insert(d.name.clone().unwrap_or_else(|| d.id.clone()));
+                    }
+                }
+            }
+            let speed = nav.profile.max_speed_m_s * slowest;
+            let meta = json!({
+                "speed_limit": (slowest * 100.0).round(),
+                "abs_speed_limit": round6(speed),
+                "length_m": round6(len),
+                "zones": zone_names,
+                "doors": door_names,
+            });
+            for key in [(w[0], w[1]), (w[1], w[0])] {
+                if edges.insert(key) {
+                    edge_meta.push((key, meta.clone()));
+                }
+            }
+        }
+    }
+    let mut features = Vec::new();
+    for (id, n) in nodes.iter().enumerate() {
+        features.push(json!({
+            "type": "Feature",
+            "geometry": {"type": "Point", "coordinates": [round6(n.p.x), round6(n.p.y)]},
+            "properties": {"id": id, "frame": options.frame, "metadata": n.meta},
+        }));
+    }
+    for (next, ((s, e), meta)) in (nodes.len()..).zip(edge_meta) {
+        let (p, q) = (nodes[s].p, nodes[e].p);
+        let time = meta["length_m"].as_f64().unwrap_or(0.0)
+            / meta["abs_speed_limit"].as_f64().unwrap_or(1.0).max(1e-9);
+        features.push(json!({
+            "type": "Feature",
+            "geometry": {"type": "MultiLineString", "coordinates": [[[round6(p.x), round6(p.y)], [round6(q.x), round6(q.y)]]]},
+            "properties": {
+                "id": next,
+                "startid": s,
+                "endid": e,
+                "cost": round6(time),
+                "overridable": true,
+                "metadata": meta,
+            },
+        }));
+    }
+    json!({
+        "type": "FeatureCollection",
+        "name": format!("{} ({})", floor.name, nav.profile.name),
+        "features": features,
+    })
+}
+
+/// The zones a topology node is in (a zone itself; a door's or landing's zones).
+fn zones_of(nav: &Navigator<'_>, n: usize, fi: usize) -> BTreeSet<usize> {
+    let t = &nav.topology;
+    let node = &t.nodes[n];
+    if node.kind == NodeKind::Zone {
+        return [node.index].into_iter().collect();
+    }
+    t.adjacency[n]
+        .iter()
+        .filter(|(_, v)| t.nodes[*v].kind == NodeKind::Zone && t.nodes[*v].floor == fi)
+        .map(|(_, v)| t.nodes[*v].index)
+        .collect()
+}
+
+fn readme(nav: &Navigator<'_>, options: &Nav2Options, storeys: &[StoreyBundle]) -> String {
+    let p = &nav.profile;
+    let mut s = String::new();
+    let _ = writeln!(s, "# Nav2 bundle for robot profile `{}`\n", p.name);
+    let _ = writeln!(
+        s,
+        "Made by poinav from the building model: robot {:.2} m wide, needs {:.2} m clear width; door and stair statuses are this profile's.\n",
+        p.width_m,
+        p.min_clearance_width()
+    );
+    s.push_str("| storey | folder | map size (cells) | origin | keepout cells | speed-limited cells | route graph nodes / edges |\n|---|---|---|---|---|---|---|\n");
+    for st in storeys {
+        let _ = writeln!(
+            s,
+            "| {} | `{}/` | {} x {} | [{}, {}, 0.0] | {} | {} | {} / {} |",
+            st.floor,
+            st.folder,
+            st.width,
+            st.height,
+            st.origin[0],
+            st.origin[1],
+            st.keepout_cells,
+            st.speed_cells,
+            st.graph_nodes,
+            st.graph_edges
+        );
+    }
+    let res = nav
+        .floors
+        .first()
+        .map_or(0.05, |f| f.grid.occupancy.resolution_m);
+    let lethal = nav.floors.first().map_or(0.0, |f| f.grid.lethal_radius_m);
+    let _ = write!(
+        s,
+        "
+## Files per storey
+
+- `map.yaml`, `map.pgm`: the occupancy map for `nav2_map_server` ({res} m per pixel, mode trinary:
+  0 occupied, 254 free, 205 unknown; thresholds 0.65 / {free}; the top row is the largest y;
+  origin is the lower-left pixel, yaw 0; a free threshold of 0.25, Nav2's default, would load
+  the unknown grey 205 as free). Walls, furniture and closed (BLOCKED) doors are occupied, the
+  inside of the building free, the outside unknown. It is not inflated: configure Nav2's
+  inflation layer with `inflation_radius` = {infl:.3} m (the robot's circumscribed radius plus its
+  clearance margin) and a footprint or `robot_radius` of your robot; poinav planned with a lethal
+  radius of {lethal:.3} m (half the robot's width).
+- `keepout_mask.yaml`, `keepout_mask.pgm`: keepout filter mask, black (100) = never enter:
+  BLOCKED doors and the stairs or ramps this robot cannot use.
+- `speed_mask.yaml`, `speed_mask.pgm`: speed filter mask (mode scale, free_thresh 0,
+  occupied_thresh 1): mask value = 100 - speed limit in percent of the maximum speed, for B-1
+  hazard zones, B-2 narrow doors and zones, and C-1 multi-robot zones; 0 = no limit.
+- `costmap_filter_info.yaml`: parameters of the two `costmap_filter_info_server` nodes (keepout:
+  type 0, base 0, multiplier 1; speed: type 1 = percent, base 100, multiplier -1, so the filter
+  value base + multiplier x mask is the speed limit in percent).
+- `route_graph.geojson`: graph for `nav2_route` (`graph_filepath`): Point nodes (zones, doors,
+  landings, and the corners of collision-free paths between them, in `metadata.kind`) and
+  MultiLineString edges in both directions with `cost` (seconds at the role speed),
+  `overridable: true` and `metadata.speed_limit` (percent, for the AdjustSpeedLimit operation;
+  every edge carries it, so DistanceScorer's ratios stay right) and `metadata.abs_speed_limit`
+  (m/s, for TimeScorer). Ids are unique across nodes and edges. BLOCKED doors have no edges.
+
+`topology.json` (here) is the whole building's room/door graph with every door's and
+connection's status and reason for this profile.
+
+## Loading it (ROS 2, Nav2)
+
+```sh
+# the map
+ros2 run nav2_map_server map_server --ros-args -p yaml_filename:=00-.../map.yaml
+# the masks, each by its own map_server, and their filter info servers
+ros2 run nav2_map_server map_server --ros-args -r __node:=keepout_mask_server \\
+    -p yaml_filename:=00-.../keepout_mask.yaml -p topic_name:=keepout_filter_mask
+ros2 run nav2_map_server map_server --ros-args -r __node:=speed_mask_server \\
+    -p yaml_filename:=00-.../speed_mask.yaml -p topic_name:=speed_filter_mask
+ros2 run nav2_map_server costmap_filter_info_server --ros-args -r __node:=keepout_filter_info_server \\
+    --params-file 00-.../costmap_filter_info.yaml
+ros2 run nav2_map_server costmap_filter_info_server --ros-args -r __node:=speed_filter_info_server \\
+    --params-file 00-.../costmap_filter_info.yaml
+```
+
+(Bring each lifecycle node up with `ros2 lifecycle set <node> configure` and `activate`, or add
+them to a lifecycle manager.) In the global and local costmaps add the filters:
+
+```yaml
+global_costmap:
+  global_costmap:
+    ros__parameters:
+      filters: [\"keepout_filter\", \"speed_filter\"]
+      keepout_filter:
+        plugin: \"nav2_costmap_2d::KeepoutFilter\"
+        enabled: True
+        filter_info_topic: \"keepout_filter_info\"
+      speed_filter:
+        plugin: \"nav2_costmap_2d::SpeedFilter\"
+        enabled: True
+        filter_info_topic: \"speed_filter_info\"
+        speed_limit_topic: \"speed_limit\"
+```
+
+and point the route server at the graph: `route_server: ros__parameters: graph_filepath:
+<folder>/route_graph.geojson`.
+
+Several storeys: Nav2 has one map at a time. Load another storey's map with the map server's
+`load_map` service (`ros2 service call /map_server/load_map nav2_msgs/srv/LoadMap
+\"{{map_url: <folder>/map.yaml}}\"`), and the masks and graph likewise; landings of stairs,
+ramps and lifts are route-graph nodes with `metadata.kind = landing` and `to_floors`.
+",
+        infl = nav.floors.first().map_or(0.0, |f| f.grid.inflation_radius_m),
+        free = options.free_thresh,
+    );
+    s
+}

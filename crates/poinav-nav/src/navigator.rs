@@ -1,0 +1,163 @@
+//! A building prepared for one robot profile: an inflated grid per storey, the topology, each
+//! door's and connection's status, whether each door can be crossed in the grid, and the
+//! speed fractions of every zone and door. Routes, the audit and the Nav2 bundle start here.
+
+use poinav_poi::{AccessibilityStatus, RobotProfile};
+use serde::Serialize;
+
+use crate::building::{passable, Building};
+use crate::graph::{NodeKind, Topology};
+use crate::grid::{GridOptions, InflationOptions, NavGrid};
+use crate::speed::RoleSpeeds;
+use crate::NavError;
+
+/// Everything that decides grids, routes and audits besides the profile.
+#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+pub struct NavOptions {
+    /// Rasterisation.
+    pub grid: GridOptions,
+    /// Inflation.
+    pub inflation: InflationOptions,
+    /// Speed fractions per role.
+    pub speeds: RoleSpeeds,
+}
+
+/// Per storey: the grid and speed fractions.
+#[derive(Debug, Clone)]
+pub struct FloorNav {
+    /// The inflated grid.
+    pub grid: NavGrid,
+    /// Speed fraction per zone (index as in `Floor::zones`).
+    pub zone_speed: Vec<f64>,
+    /// Speed fraction per door.
+    pub door_speed: Vec<f64>,
+}
+
+impl FloorNav {
+    /// Speed fraction on cell `i` (the slower of its zone and door).
+    #[inline]
+    pub fn speed(&self, i: usize) -> f64 {
+        let g = &self.grid.occupancy;
+        let mut f = 1.0;
+        let z = g.zone[i];
+        if z != crate::grid::NONE {
+            f = self.zone_speed[z as usize];
+        }
+        let d = g.door[i];
+        if d != crate::grid::NONE {
+            f = f.min(self.door_speed[d as usize]);
+        }
+        f
+    }
+}
+
+/// A building prepared for one profile.
+#[derive(Debug, Clone)]
+pub struct Navigator<'a> {
+    /// The building.
+    pub building: &'a Building,
+    /// The profile.
+    pub profile: RobotProfile,
+    /// The options.
+    pub options: NavOptions,
+    /// The topology.
+    pub topology: Topology,
+    /// Per storey.
+    pub floors: Vec<FloorNav>,
+    /// Per topology node: status and reason for the profile.
+    pub status: Vec<(AccessibilityStatus, String)>,
+    /// Per topology node: door nodes whether the robot's centre can cross the door in the
+    /// inflated grid; `true` for other nodes.
+    pub grid_passable: Vec<bool>,
+    /// Per topology node: passable by status and (doors) in the grid.
+    pub open: Vec<bool>,
+}
+
+impl<'a> Navigator<'a> {
+    /// Rasterises and inflates every storey and works out statuses for `profile`.
+    pub fn new(
+        building: &'a Building,
+        profile: &RobotProfile,
+        options: &NavOptions,
+    ) -> Result<Navigator<'a>, NavError> {
+        options.speeds.validate().map_err(NavError::Invalid)?;
+        let mut topology = Topology::build(building);
+        let status = topology.statuses(building, profile);
+        let mut floors = Vec::with_capacity(building.floors.len());
+        for floor in &building.floors {
+            let grid = NavGrid::build(floor, profile, &options.grid, &options.inflation)?;
+            let zone_speed = floor
+                .zones
+                .iter()
+                .map(|z| options.speeds.zone(z).0)
+                .collect();
+            let door_speed = floor
+                .doors
+                .iter()
+                .zip(&grid.occupancy.doors)
+                .map(|(d, g)| options.speeds.door(d, g.status).0)
+                .collect();
+            floors.push(FloorNav {
+                grid,
+                zone_speed,
+                door_speed,
+            });
+        }
+        for (fi, f) in floors.iter().enumerate() {
+            topology.add_open_boundaries(fi, &f.grid, 2);
+        }
+        let grid_passable: Vec<bool> = topology
+            .nodes
+            .iter()
+            .map(|n| match n.kind {
+                NodeKind::Door => {
+                    let outside = topology
+                        .door(n.floor, n.index)
+                        .and_then(|d| d.outside_side());
+                    floors[n.floor].grid.door_passable(n.index, outside)
+                }
+                _ => true,
+            })
+            .collect();
+        let pending = options.grid.pending_doors_open;
+        let open = status
+            .iter()
+            .zip(&grid_passable)
+            .map(|((s, _), g)| passable(*s, pending) && *g)
+            .collect();
+        Ok(Navigator {
+            building,
+            profile: profile.clone(),
+            options: options.clone(),
+            topology,
+            floors,
+            status,
+            grid_passable,
+            open,
+        })
+    }
+
+    /// The topology as JSON with this profile's statuses (open boundaries included).
+    pub fn topology_json(&self) -> serde_json::Value {
+        self.topology.to_json(self.building, &self.profile)
+    }
+
+    /// Why node `n` (a door or landing) cannot be passed: its status and reason, or that the
+    /// inflated grid leaves no room for the robot's centre.
+    pub fn closed_reason(&self, n: usize) -> String {
+        let (s, why) = &self.status[n];
+        if !passable(*s, self.options.grid.pending_doors_open) {
+            format!("{}: {why}", s.label())
+        } else if !self.grid_passable[n] {
+            format!(
+                "{} ({why}) but no free path through it in the grid inflated by {:.3} m",
+                s.label(),
+                self.floors[self.topology.nodes[n].floor]
+                    .grid
+                    .lethal_radius_m
+            )
+        } else {
+            format!("{}: {why}", s.label())
+        }
+    }
+}

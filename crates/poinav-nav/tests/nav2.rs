@@ -1,0 +1,480 @@
+//! The Nav2 bundle read back by an independent reader written from nav2_map_server's rules
+//! (FIELD-NOTES "Nav2 conventions"): YAML fields, binary PGM, p = (255 - x) / 255, trinary and
+//! scale thresholds, first image row = largest y; the masks' values through the filter info
+//! (value = base + multiplier * mask); the route graph's ids, directions and collision-free
+//! edges.
+
+mod support;
+
+use std::collections::{BTreeMap, BTreeSet, VecDeque};
+use std::path::Path;
+
+use glam::DVec2;
+use poinav_nav::grid::CellState;
+use poinav_nav::nav2::{write_bundle, Nav2Options};
+use poinav_nav::{Building, NavOptions, Navigator, RoleSpeeds};
+use poinav_poi::RobotProfile;
+use serde_json::Value;
+use support::{demo, demo_floor, office_floor};
+
+/// `key: value` lines of a flat YAML file.
+fn read_yaml(path: &Path) -> BTreeMap<String, String> {
+    std::fs::read_to_string(path)
+        .unwrap()
+        .lines()
+        .filter(|l| !l.trim_start().starts_with('#'))
+        .filter_map(|l| l.split_once(':'))
+        .map(|(k, v)| (k.trim().to_string(), v.trim().trim_matches('"').to_string()))
+        .collect()
+}
+
+/// A binary PGM (P5, maxval 255): width, height, pixels row by row from the top.
+fn read_pgm(path: &Path) -> (usize, usize, Vec<u8>) {
+    let bytes = std::fs::read(path).unwrap();
+    let mut fields = Vec::new();
+    let mut i = 0;
+    while fields.len() < 4 {
+        while bytes[i].is_ascii_whitespace() {
+            i += 1;
+        }
+        if bytes[i] == b'#' {
+            while bytes[i] != b'\n' {
+                i += 1;
+            }
+            continue;
+        }
+        let start = i;
+        while !bytes[i].is_ascii_whitespace() {
+            i += 1;
+        }
+        fields.push(String::from_utf8(bytes[start..i].to_vec()).unwrap());
+    }
+    i += 1; // the single whitespace after maxval
+    assert_eq!(fields[0], "P5");
+    assert_eq!(fields[3], "255");
+    let (w, h): (usize, usize) = (fields[1].parse().unwrap(), fields[2].parse().unwrap());
+    assert_eq!(bytes.len() - i, w * h);
+    (w, h, bytes[i..].to_vec())
+}
+
+/// An occupancy grid as nav2_map_server loads it: cell values (-1 unknown, 0-100) with row 0 at
+/// the bottom, resolution and origin.
+struct Loaded {
+    width: usize,
+    height: usize,
+    resolution: f64,
+    origin: [f64; 3],
+    data: Vec<i8>,
+}
+
+impl Loaded {
+    fn at(&self, x: f64, y: f64) -> i8 {
+        let c = ((x - self.origin[0]) / self.resolution).floor() as usize;
+        let r = ((y - self.origin[1]) / self.resolution).floor() as usize;
+        self.data[r * self.width + c]
+    }
+}
+
+fn load(yaml_path: &Path) -> Loaded {
+    let y = read_yaml(yaml_path);
+    let image = yaml_path.parent().unwrap().join(&y["image"]);
+    let resolution: f64 = y["resolution"].parse().unwrap();
+    let origin: Vec<f64> = y["origin"]
+        .trim_matches(|c| c == '[' || c == ']')
+        .split(',')
+        .map(|v| v.trim().parse().unwrap())
+        .collect();
+    let negate: i32 = y["negate"].parse().unwrap();
+    let occ_t: f64 = y["occupied_thresh"].parse().unwrap();
+    let free_t: f64 = y["free_thresh"].parse().unwrap();
+    let mode = y.get("mode").map_or("trinary", String::as_str).to_string();
+    let (w, h, pixels) = read_pgm(&image);
+    let mut data = vec![0i8; w * h];
+    for row in 0..h {
+        for col in 0..w {
+            let x = f64::from(pixels[row * w + col]);
+            let shade = x / 255.0;
+            let p = if negate != 0 { shade } else { 1.0 - shade };
+            let v: i8 = match mode.as_str() {
+                "trinary" => {
+                    if p > occ_t {
+                        100
+                    } else if p < free_t {
+                        0
+                    } else {
+                        -1
+                    }
+                }
+                "scale" => {
+                    if p > occ_t {
+                        100
+                    } else if p < free_t {
+                        0
+                    } else {
+                        ((p - free_t) / (occ_t - free_t) * 100.0).round_ties_even() as i8
+                    }
+                }
+                other => panic!("mode {other}"),
+            };
+            data[w * (h - row - 1) + col] = v;
+        }
+    }
+    Loaded {
+        width: w,
+        height: h,
+        resolution,
+        origin: [origin[0], origin[1], origin[2]],
+        data,
+    }
+}
+
+/// base and multiplier per costmap_filter_info_server in the params file.
+fn filter_info(path: &Path) -> BTreeMap<String, (i32, f64, f64)> {
+    let text = std::fs::read_to_string(path).unwrap();
+    let mut out = BTreeMap::new();
+    let mut server = String::new();
+    let mut vals: BTreeMap<String, String> = BTreeMap::new();
+    for line in text.lines().filter(|l| !l.trim_start().starts_with('#')) {
+        if !line.starts_with(' ') && line.ends_with(':') {
+            if !server.is_empty() {
+                out.insert(
+                    server.clone(),
+                    (
+                        vals["type"].parse().unwrap(),
+                        vals["base"].parse().unwrap(),
+                        vals["multiplier"].parse().unwrap(),
+                    ),
+                );
+            }
+            server = line.trim_end_matches(':').to_string();
+            vals.clear();
+        } else if let Some((k, v)) = line.split_once(':') {
+            vals.insert(k.trim().into(), v.trim().into());
+        }
+    }
+    out.insert(
+        server,
+        (
+            vals["type"].parse().unwrap(),
+            vals["base"].parse().unwrap(),
+            vals["multiplier"].parse().unwrap(),
+        ),
+    );
+    out
+}
+
+#[test]
+fn map_and_masks_read_back() {
+    let building = Building::single(demo_floor(&poinav_author::DemoBuilding {
+        room2_door_width_m: 0.6,
+        ..Default::default()
+    }));
+    let profile = RobotProfile::paper();
+    let dir = tempfile::tempdir().unwrap();
+    let summary = write_bundle(&building, &profile, &Nav2Options::default(), dir.path()).unwrap();
+    let sub = dir.path().join("00-ground-floor");
+    assert_eq!(summary.storeys[0].folder, "00-ground-floor");
+
+    let map = load(&sub.join("map.yaml"));
+    let y = read_yaml(&sub.join("map.yaml"));
+    assert_eq!(y["mode"], "trinary");
+    assert_eq!(
+        (y["occupied_thresh"].as_str(), y["free_thresh"].as_str()),
+        ("0.65", "0.196")
+    );
+    assert_eq!(map.origin[2], 0.0);
+    assert_eq!(map.resolution, 0.05);
+    // The whole map equals the grid, cell by cell.
+    let nav = Navigator::new(&building, &profile, &NavOptions::default()).unwrap();
+    let g = &nav.floors[0].grid.occupancy;
+    assert_eq!((map.width, map.height), (g.width, g.height));
+    assert_eq!(map.origin[..2], [g.origin.x, g.origin.y]);
+    for i in 0..g.len() {
+        let want = match g.cells[i] {
+            CellState::Free => 0,
+            CellState::Occupied => 100,
+            CellState::Unknown => -1,
+        };
+        assert_eq!(map.data[i], want, "cell {i}");
+    }
+    // With Nav2's default free_thresh 0.25 the unknown grey 205 would load as free: p = 50 / 255
+    // = 0.196 < 0.25. That is why the bundle writes 0.196.
+    let yaml = std::fs::read_to_string(sub.join("map.yaml")).unwrap();
+    std::fs::write(
+        sub.join("map-0.25.yaml"),
+        yaml.replace("free_thresh: 0.196", "free_thresh: 0.25"),
+    )
+    .unwrap();
+    let default_thresh = load(&sub.join("map-0.25.yaml"));
+    assert_eq!(default_thresh.at(-0.5, 5.0), 0);
+    assert!(!default_thresh.data.contains(&-1));
+    // In world coordinates: rooms free, walls occupied, outside unknown, the BLOCKED door shut.
+    assert_eq!(map.at(2.0, 2.0), 0);
+    assert_eq!(map.at(6.2, 5.4), 0);
+    assert_eq!(map.at(1.0, 4.1), 100);
+    assert_eq!(map.at(-0.5, 5.0), -1);
+    assert_eq!(map.at(6.2, 4.1), 100);
+    assert_eq!(map.at(2.0, 4.1), 0);
+
+    let info = filter_info(&sub.join("costmap_filter_info.yaml"));
+    let (kt, kb, km) = info["keepout_filter_info_server"];
+    let (st, sb, sm) = info["speed_filter_info_server"];
+    assert_eq!((kt, st), (0, 1));
+
+    // Keepout: 100 on the BLOCKED door only.
+    let keepout = load(&sub.join("keepout_mask.yaml"));
+    assert_eq!(kb + km * f64::from(keepout.at(6.2, 4.1)), 100.0);
+    assert_eq!(keepout.at(2.0, 4.1), 0);
+    assert_eq!(keepout.at(2.0, 2.0), 0);
+    let keep_cells = keepout.data.iter().filter(|v| **v == 100).count();
+    // 0.60 x 0.20 m at 0.05 m.
+    assert_eq!(keep_cells, 12 * 4);
+    assert_eq!(keep_cells, summary.storeys[0].keepout_cells);
+
+    // Speed: the C-1 corridor (SPEED_REDUCTION) at 50%, rooms without limit (mask 0).
+    let speed = load(&sub.join("speed_mask.yaml"));
+    assert_eq!(read_yaml(&sub.join("speed_mask.yaml"))["mode"], "scale");
+    let corridor = speed.at(6.2, 5.4);
+    assert_eq!(
+        sb + sm * f64::from(corridor),
+        100.0 * RoleSpeeds::default().speed_reduction
+    );
+    assert_eq!(speed.at(2.0, 2.0), 0);
+    assert_eq!(speed.at(-0.5, 5.0), 0);
+}
+
+#[test]
+fn speed_mask_for_narrow_doors_and_hazards() {
+    let building = Building::single(office_floor());
+    let profile = RobotProfile::paper();
+    let dir = tempfile::tempdir().unwrap();
+    let speeds = RoleSpeeds {
+        hazard: 0.3,
+        narrow: 0.4,
+        speed_reduction: 0.6,
+        ..Default::default()
+    };
+    let options = Nav2Options {
+        nav: NavOptions {
+            speeds,
+            ..Default::default()
+        },
+        ..Default::default()
+    };
+    write_bundle(&building, &profile, &options, dir.path()).unwrap();
+    let sub = dir.path().join("00-office-level");
+    let speed = load(&sub.join("speed_mask.yaml"));
+    let (_, base, mult) =
+        filter_info(&sub.join("costmap_filter_info.yaml"))["speed_filter_info_server"];
+    let limit = |x: f64, y: f64| base + mult * f64::from(speed.at(x, y));
+    let floor = office_floor();
+    let centre = |name: &str| {
+        let z = floor.zone(name).unwrap();
+        poinav_nav::polygon::interior_point(&z.ring).unwrap()
+    };
+    let c = centre("Office 10"); // B-1
+    assert_eq!(limit(c.x, c.y), 30.0);
+    let c = centre("Office 11");
+    assert_eq!(speed.at(c.x, c.y), 0);
+    let c = centre("Corridor A");
+    assert_eq!(limit(c.x, c.y), 60.0);
+    // Office 7's 0.80 m door (RESTRICTED, B-2).
+    let d = floor
+        .doors
+        .iter()
+        .find(|d| d.name.as_deref() == Some("Door Office 7"))
+        .unwrap();
+    assert_eq!(limit(d.center.x, d.center.y), 40.0);
+    // Office 50's BLOCKED door is in the keepout mask.
+    let keepout = load(&sub.join("keepout_mask.yaml"));
+    let d = floor
+        .doors
+        .iter()
+        .find(|d| d.name.as_deref() == Some("Door Office 50"))
+        .unwrap();
+    assert_eq!(keepout.at(d.center.x, d.center.y), 100);
+}
+
+fn graph_check(building: &Building, dir: &Path) -> (Value, BTreeMap<u64, Vec<u64>>) {
+    let profile = RobotProfile::paper();
+    let text = std::fs::read_to_string(dir.join("route_graph.geojson")).unwrap();
+    let graph: Value = serde_json::from_str(&text).unwrap();
+    assert_eq!(graph["type"], "FeatureCollection");
+    let features = graph["features"].as_array().unwrap();
+    let mut ids = BTreeSet::new();
+    let mut nodes = BTreeMap::new();
+    let mut adj: BTreeMap<u64, Vec<u64>> = BTreeMap::new();
+    let mut directed = BTreeSet::new();
+    for f in features {
+        let id = f["properties"]["id"].as_u64().unwrap();
+        assert!(ids.insert(id), "id {id} twice");
+        if f["geometry"]["type"] == "Point" {
+            let c = &f["geometry"]["coordinates"];
+            nodes.insert(
+                id,
+                DVec2::new(c[0].as_f64().unwrap(), c[1].as_f64().unwrap()),
+            );
+            assert_eq!(f["properties"]["frame"], "map");
+        }
+    }
+    let nav = Navigator::new(building, &profile, &NavOptions::default()).unwrap();
+    let grid = &nav.floors[0].grid;
+    for f in features
+        .iter()
+        .filter(|f| f["geometry"]["type"] == "MultiLineString")
+    {
+        let p = &f["properties"];
+        let (s, e) = (p["startid"].as_u64().unwrap(), p["endid"].as_u64().unwrap());
+        let (a, b) = (nodes[&s], nodes[&e]);
+        directed.insert((s, e));
+        adj.entry(s).or_default().push(e);
+        assert!(p["cost"].as_f64().unwrap() > 0.0);
+        assert_eq!(p["overridable"], true);
+        let speed = p["metadata"]["speed_limit"].as_f64().unwrap();
+        assert!(speed > 0.0 && speed <= 100.0);
+        assert!(
+            p["metadata"]["speed_limit"].is_f64(),
+            "speed_limit must be a float"
+        );
+        assert!(p["metadata"]["abs_speed_limit"].as_f64().unwrap() <= profile.max_speed_m_s);
+        // The segment is collision-free for the robot's centre.
+        let n = (a.distance(b) / 0.01).ceil() as usize + 1;
+        for k in 0..=n {
+            let q = a.lerp(b, k as f64 / n as f64);
+            let cell = grid.occupancy.cell_of(q).unwrap();
+            assert!(
+                grid.traversable(cell),
+                "edge {s}->{e} leaves free space at {q}"
+            );
+        }
+    }
+    for (s, e) in &directed {
+        assert!(directed.contains(&(*e, *s)), "edge {s}->{e} has no reverse");
+    }
+    (graph, adj)
+}
+
+fn node_named(graph: &Value, name: &str) -> Option<u64> {
+    graph["features"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|f| f["properties"]["metadata"]["name"] == name)
+        .map(|f| f["properties"]["id"].as_u64().unwrap())
+}
+
+fn reachable(adj: &BTreeMap<u64, Vec<u64>>, from: u64) -> BTreeSet<u64> {
+    let mut seen = BTreeSet::from([from]);
+    let mut queue = VecDeque::from([from]);
+    while let Some(n) = queue.pop_front() {
+        for m in adj.get(&n).into_iter().flatten() {
+            if seen.insert(*m) {
+                queue.push_back(*m);
+            }
+        }
+    }
+    seen
+}
+
+#[test]
+fn route_graph_is_a_valid_nav2_graph() {
+    let building = Building::single(demo());
+    let dir = tempfile::tempdir().unwrap();
+    write_bundle(
+        &building,
+        &RobotProfile::paper(),
+        &Nav2Options::default(),
+        dir.path(),
+    )
+    .unwrap();
+    let (graph, adj) = graph_check(&building, &dir.path().join("00-ground-floor"));
+    let r1 = node_named(&graph, "Room 1").unwrap();
+    let reach = reachable(&adj, r1);
+    for k in 2..=6 {
+        assert!(
+            reach.contains(&node_named(&graph, &format!("Room {k}")).unwrap()),
+            "Room {k}"
+        );
+    }
+    // The RESTRICTED door's edges are slow (B-2), the corridor's at the C-1 speed.
+    let d2 = node_named(&graph, "Door Room 2").unwrap();
+    let slow = graph["features"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|f| f["properties"]["startid"] == d2)
+        .all(|f| f["properties"]["metadata"]["speed_limit"].as_f64().unwrap() <= 50.0);
+    assert!(slow);
+    // README and topology.
+    let readme = std::fs::read_to_string(dir.path().join("README.md")).unwrap();
+    assert!(readme.contains("load_map") && readme.contains("route_graph.geojson"));
+    let topo: Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("topology.json")).unwrap())
+            .unwrap();
+    assert_eq!(topo["format"], "poinav-topology");
+    // Deterministic output.
+    let dir2 = tempfile::tempdir().unwrap();
+    write_bundle(
+        &building,
+        &RobotProfile::paper(),
+        &Nav2Options::default(),
+        dir2.path(),
+    )
+    .unwrap();
+    for f in [
+        "map.pgm",
+        "map.yaml",
+        "keepout_mask.pgm",
+        "speed_mask.pgm",
+        "route_graph.geojson",
+    ] {
+        assert_eq!(
+            std::fs::read(dir.path().join("00-ground-floor").join(f)).unwrap(),
+            std::fs::read(dir2.path().join("00-ground-floor").join(f)).unwrap(),
+            "{f}"
+        );
+    }
+}
+
+#[test]
+fn blocked_door_has_no_route_graph_edges() {
+    let building = Building::single(demo_floor(&poinav_author::DemoBuilding {
+        room2_door_width_m: 0.6,
+        ..Default::default()
+    }));
+    let dir = tempfile::tempdir().unwrap();
+    write_bundle(
+        &building,
+        &RobotProfile::paper(),
+        &Nav2Options::default(),
+        dir.path(),
+    )
+    .unwrap();
+    let (graph, adj) = graph_check(&building, &dir.path().join("00-ground-floor"));
+    assert!(node_named(&graph, "Door Room 2").is_none());
+    let reach = reachable(&adj, node_named(&graph, "Room 1").unwrap());
+    assert!(!reach.contains(&node_named(&graph, "Room 2").unwrap()));
+    assert!(reach.contains(&node_named(&graph, "Room 3").unwrap()));
+}
+
+#[test]
+fn office_route_graph() {
+    let building = Building::single(office_floor());
+    let dir = tempfile::tempdir().unwrap();
+    let summary = write_bundle(
+        &building,
+        &RobotProfile::paper(),
+        &Nav2Options::default(),
+        dir.path(),
+    )
+    .unwrap();
+    println!(
+        "office route graph: {} nodes, {} edges",
+        summary.storeys[0].graph_nodes, summary.storeys[0].graph_edges
+    );
+    let (graph, adj) = graph_check(&building, &dir.path().join("00-office-level"));
+    let reach = reachable(&adj, node_named(&graph, "Entrance West").unwrap());
+    assert!(reach.contains(&node_named(&graph, "Office 98").unwrap()));
+    assert!(reach.contains(&node_named(&graph, "Entrance East").unwrap()));
+    assert!(!reach.contains(&node_named(&graph, "Office 50").unwrap()));
+}

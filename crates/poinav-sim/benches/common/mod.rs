@@ -1,0 +1,117 @@
+//! Buildings and robot placements shared by the simulator benchmarks: the paper's test building
+//! and office-a.ifc's "Level 1" as floors, and free start spots inside their zones.
+
+use std::path::PathBuf;
+
+use glam::DVec2;
+use poinav_nav::Floor;
+use poinav_poi::{RobotProfile, RuleSet};
+use poinav_sim::geometry::{point_in_ring, point_segment_distance};
+
+/// The storey of office-a.ifc the benchmarks use.
+pub const OFFICE_STOREY: &str = "Level 1";
+
+/// `shared/` beside the repository, or `$POINAV_SHARED`.
+pub fn shared() -> PathBuf {
+    std::env::var_os("POINAV_SHARED").map_or_else(
+        || PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../../../shared")),
+        PathBuf::from,
+    )
+}
+
+/// The paper's test building, as `poinav simulate` prepares it.
+pub fn demo_floor() -> Floor {
+    let scenario = poinav_sim::Scenario::from_toml(
+        "name = \"bench\"\nduration_s = 1.0\n[building]\ndemo = {}\n[[robot]]\nname = \"R\"\nstart = { x = 1.0, y = 5.4 }\ncontroller = { kind = \"idle\" }\n",
+        "bench.toml",
+        std::path::Path::new("."),
+    )
+    .unwrap();
+    poinav_sim::prepare(&scenario, None, None).unwrap().floor
+}
+
+/// office-a.ifc's [`OFFICE_STOREY`], classified with the default rules and the paper's robot
+/// and converted by [`poinav_sim::ifc_floor::converter`].
+pub fn office_floor() -> Floor {
+    let path = shared().join("ifc").join("office-a.ifc");
+    let bytes = std::fs::read(&path).unwrap_or_else(|e| {
+        panic!(
+            "cannot read {} ({e}); set POINAV_SHARED to the folder holding ifc/",
+            path.display()
+        )
+    });
+    let model = poinav_ifc::Model::from_bytes("office-a.ifc", bytes).unwrap();
+    let classification = poinav_poi::classify(&model, &RuleSet::defaults(), &RobotProfile::paper());
+    poinav_sim::ifc_floor::converter()(&model, &classification, Some(OFFICE_STOREY)).unwrap()
+}
+
+/// Every obstacle edge of `floor` as `(a, b)`, degenerate edges left out (as the world index
+/// does).
+pub fn obstacle_edges(floor: &Floor) -> Vec<(DVec2, DVec2)> {
+    let mut out = Vec::new();
+    for o in &floor.obstacles {
+        for ring in &o.rings {
+            let n = ring.len();
+            if n < 2 {
+                continue;
+            }
+            for i in 0..n {
+                let (a, b) = (ring[i], ring[(i + 1) % n]);
+                if a.distance_squared(b) > 1e-18 {
+                    out.push((a, b));
+                }
+            }
+        }
+    }
+    out
+}
+
+/// Points on a `spacing` grid inside the zones of `floor`, each at least `clear` from every
+/// obstacle edge, outside every obstacle and at least `clear` inside its zone's outline;
+/// zone by zone, row by row.
+pub fn free_spots(floor: &Floor, spacing: f64, clear: f64) -> Vec<DVec2> {
+    let edges = obstacle_edges(floor);
+    let mut spots = Vec::new();
+    for z in &floor.zones {
+        let (lo, hi) = z
+            .ring
+            .iter()
+            .fold((DVec2::INFINITY, DVec2::NEG_INFINITY), |(lo, hi), p| {
+                (lo.min(*p), hi.max(*p))
+            });
+        let n = z.ring.len();
+        let mut y = lo.y + clear;
+        while y <= hi.y - clear {
+            let mut x = lo.x + clear;
+            while x <= hi.x - clear {
+                let p = DVec2::new(x, y);
+                let inside = point_in_ring(p, &z.ring)
+                    && (0..n).all(|i| {
+                        point_segment_distance(p, z.ring[i], z.ring[(i + 1) % n]) >= clear
+                    });
+                let free = inside
+                    && edges
+                        .iter()
+                        .all(|&(a, b)| point_segment_distance(p, a, b) >= clear)
+                    && !floor
+                        .obstacles
+                        .iter()
+                        .flat_map(|o| &o.rings)
+                        .any(|r| point_in_ring(p, r));
+                if free {
+                    spots.push(p);
+                }
+                x += spacing;
+            }
+            y += spacing;
+        }
+    }
+    spots
+}
+
+/// `n` of `spots`, spread evenly over the list.
+pub fn spread(spots: &[DVec2], n: usize) -> Vec<DVec2> {
+    assert!(spots.len() >= n, "{} places for {n} robots", spots.len());
+    let step = spots.len() / n;
+    (0..n).map(|i| spots[i * step]).collect()
+}

@@ -1,0 +1,182 @@
+//! `poinav route`, `poinav audit` and `poinav export nav2`: navigation on the building's
+//! storeys (floor plans with POI roles) for robot profiles.
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use anyhow::Context;
+use poinav_ifc::Model;
+use poinav_nav::{AuditOptions, Building, Nav2Options, NavOptions, Navigator, Place};
+use poinav_poi::{classify, RobotProfile, RuleSet};
+
+/// Arguments of `poinav route`.
+#[derive(Debug, clap::Args)]
+pub struct RouteArgs {
+    /// The IFC file (never modified).
+    file: PathBuf,
+    /// Start: a space's Name or LongName (`Room 1`, `Room 1@Level 2`) or `x,y@Storey`.
+    #[arg(long)]
+    from: String,
+    /// Goal, in the same forms.
+    #[arg(long)]
+    to: String,
+    /// Robot profile (default: the paper's robot).
+    #[arg(long)]
+    profile: Option<PathBuf>,
+    /// Print the route as JSON.
+    #[arg(long)]
+    json: bool,
+}
+
+/// Arguments of `poinav audit`.
+#[derive(Debug, clap::Args)]
+pub struct AuditArgs {
+    /// The IFC file (never modified).
+    file: PathBuf,
+    /// Robot profiles to audit (repeat; default: the paper's robot).
+    #[arg(long = "profile")]
+    profiles: Vec<PathBuf>,
+    /// Where to write the HTML report; audit.json and one SVG per profile and storey go beside it.
+    #[arg(short, long)]
+    output: PathBuf,
+    /// Measure reachability from this space instead of from the entrances (exterior doors).
+    #[arg(long)]
+    start: Option<String>,
+    /// Exit with code 1 unless these spaces are reachable for every profile.
+    #[arg(long, num_args = 1..)]
+    require_reachable: Vec<String>,
+    /// Print the audit as JSON.
+    #[arg(long)]
+    json: bool,
+}
+
+/// Arguments of `poinav export nav2`.
+#[derive(Debug, clap::Args)]
+pub struct Nav2Args {
+    /// The IFC file (never modified).
+    file: PathBuf,
+    /// Output folder (one sub-folder per storey, a README on loading it).
+    #[arg(short, long)]
+    output: PathBuf,
+    /// Robot profile (default: the paper's robot).
+    #[arg(long)]
+    profile: Option<PathBuf>,
+}
+
+fn profile(path: Option<&Path>) -> anyhow::Result<RobotProfile> {
+    Ok(match path {
+        Some(p) => RobotProfile::load(p)?,
+        None => RobotProfile::paper(),
+    })
+}
+
+/// The building's storeys as floors, classified for `profile`.
+fn building(file: &Path, profile: &RobotProfile) -> anyhow::Result<Building> {
+    let model = Model::open(file)?;
+    let c = classify(&model, &RuleSet::defaults(), profile);
+    Ok(poinav_sim::ifc_floor::building_of(&model, &c))
+}
+
+/// Runs `poinav route`.
+pub fn route(args: &RouteArgs) -> anyhow::Result<ExitCode> {
+    let profile = profile(args.profile.as_deref())?;
+    let building = building(&args.file, &profile)?;
+    let nav = Navigator::new(&building, &profile, &NavOptions::default())?;
+    let from: Place = args.from.parse().map_err(anyhow::Error::msg)?;
+    let to: Place = args.to.parse().map_err(anyhow::Error::msg)?;
+    match nav.route(&from, &to) {
+        Ok(r) => {
+            if args.json {
+                println!("{}", serde_json::to_string_pretty(&r)?);
+            } else {
+                println!(
+                    "{} -> {} for {}: {:.2} m, {:.1} s",
+                    r.from, r.to, r.profile, r.length_m, r.time_s
+                );
+                for d in &r.doors {
+                    println!("  through {}", d.name.as_deref().unwrap_or(&d.id));
+                }
+            }
+            Ok(ExitCode::SUCCESS)
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            Ok(ExitCode::from(1))
+        }
+    }
+}
+
+/// Runs `poinav audit`.
+pub fn audit(args: &AuditArgs) -> anyhow::Result<ExitCode> {
+    let profiles: Vec<RobotProfile> = if args.profiles.is_empty() {
+        vec![RobotProfile::paper()]
+    } else {
+        args.profiles
+            .iter()
+            .map(|p| RobotProfile::load(p))
+            .collect::<Result<_, _>>()?
+    };
+    // Statuses come from each profile's own width rule; the floors carry the first profile's roles.
+    let building = building(&args.file, &profiles[0])?;
+    let report = poinav_nav::audit(
+        &building,
+        &profiles,
+        &AuditOptions {
+            nav: NavOptions::default(),
+            start: args.start.clone(),
+        },
+    )?;
+    let dir = args
+        .output
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    let files = poinav_nav::audit::write_report(&report, &building, dir)?;
+    let written = dir.join("report.html");
+    if written != args.output {
+        std::fs::rename(&written, &args.output)
+            .with_context(|| format!("writing {}", args.output.display()))?;
+    }
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&report.to_json())?);
+    } else {
+        for p in &report.profiles {
+            let [full, restricted, blocked, pending] = p.door_counts();
+            let (reachable, unreachable) = p.space_counts();
+            println!(
+                "{}: doors {full} full, {restricted} restricted, {blocked} blocked, {pending} pending; spaces {reachable} reachable, {unreachable} not",
+                p.profile
+            );
+        }
+        println!(
+            "wrote {} and {} more files in {}",
+            args.output.display(),
+            files.len().saturating_sub(1),
+            dir.display()
+        );
+    }
+    let failures = report.unreachable_required(&args.require_reachable);
+    for f in &failures {
+        eprintln!("error: {f}");
+    }
+    Ok(if failures.is_empty() {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(1)
+    })
+}
+
+/// Runs `poinav export nav2`.
+pub fn nav2(args: &Nav2Args) -> anyhow::Result<ExitCode> {
+    let profile = profile(args.profile.as_deref())?;
+    let building = building(&args.file, &profile)?;
+    let summary =
+        poinav_nav::write_bundle(&building, &profile, &Nav2Options::default(), &args.output)?;
+    println!(
+        "wrote a Nav2 bundle for {} to {}: {:?}",
+        profile.name,
+        args.output.display(),
+        summary
+    );
+    Ok(ExitCode::SUCCESS)
+}

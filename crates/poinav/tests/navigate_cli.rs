@@ -1,0 +1,217 @@
+//! `poinav route`, `poinav audit` and `poinav export nav2` on the paper's test building and on
+//! office-a.ifc: routes through the right doors, a narrowed door makes its room unreachable
+//! with the door named, and the Nav2 bundle follows nav2_map_server's conventions.
+
+mod common;
+
+use std::ffi::OsStr;
+use std::path::Path;
+
+fn run(args: &[&OsStr]) -> (i32, String, String) {
+    common::poinav(args)
+}
+
+fn demo(dir: &Path) -> std::path::PathBuf {
+    let path = dir.join("demo.ifc");
+    let (code, _, err) = run(&[
+        OsStr::new("demo-building"),
+        OsStr::new("-o"),
+        path.as_os_str(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    path
+}
+
+#[test]
+fn routes_pass_the_expected_doors_and_a_narrowed_door_is_named_as_the_blocker() {
+    let dir = tempfile::tempdir().unwrap();
+    let building = demo(dir.path());
+    let (code, out, err) = run(&[
+        OsStr::new("route"),
+        building.as_os_str(),
+        OsStr::new("--from"),
+        OsStr::new("Room 1"),
+        OsStr::new("--to"),
+        OsStr::new("Room 6"),
+        OsStr::new("--json"),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let route: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let doors: Vec<&str> = route["doors"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|d| d["name"].as_str().unwrap())
+        .collect();
+    assert_eq!(doors, ["Door Room 1", "Door Room 6"]);
+    // Room 1 (0..4, 0..4) to Room 6 (8.4..12.4, 6.8..10.8) through the corridor: 12 to 16 m.
+    let length = route["length_m"].as_f64().unwrap();
+    assert!((12.0..16.0).contains(&length), "{length}");
+    assert!(
+        route["time_s"].as_f64().unwrap() > length / 5.0,
+        "no faster than the top speed"
+    );
+
+    let narrow = dir.path().join("narrow.ifc");
+    let (code, _, err) = run(&[
+        OsStr::new("patch"),
+        OsStr::new("door-width"),
+        building.as_os_str(),
+        OsStr::new("-o"),
+        narrow.as_os_str(),
+        OsStr::new("--door"),
+        OsStr::new("Door Room 2"),
+        OsStr::new("--width"),
+        OsStr::new("0.60"),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let (code, _, err) = run(&[
+        OsStr::new("route"),
+        narrow.as_os_str(),
+        OsStr::new("--from"),
+        OsStr::new("Room 1"),
+        OsStr::new("--to"),
+        OsStr::new("Room 2"),
+    ]);
+    assert_eq!(code, 1);
+    assert!(
+        err.contains("Door Room 2") && err.contains("BLOCKED"),
+        "{err}"
+    );
+
+    let report = dir.path().join("audit/report.html");
+    std::fs::create_dir_all(report.parent().unwrap()).unwrap();
+    let (code, _, err) = run(&[
+        OsStr::new("audit"),
+        narrow.as_os_str(),
+        OsStr::new("-o"),
+        report.as_os_str(),
+        OsStr::new("--start"),
+        OsStr::new("Corridor"),
+        OsStr::new("--require-reachable"),
+        OsStr::new("Room 1"),
+        OsStr::new("Room 2"),
+    ]);
+    assert_eq!(code, 1, "Room 2 is behind a 0.60 m door: {err}");
+    assert!(
+        err.contains("Room 2") && err.contains("Door Room 2"),
+        "{err}"
+    );
+    assert!(!err.contains("Room 1 "), "Room 1 stays reachable: {err}");
+    let html = std::fs::read_to_string(&report).unwrap();
+    assert!(html.contains("<svg") && html.contains("Door Room 2"));
+    let audit: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.path().join("audit/audit.json")).unwrap())
+            .unwrap();
+    assert!(audit.to_string().contains("BLOCKED"));
+    let (code, _, err) = run(&[
+        OsStr::new("audit"),
+        building.as_os_str(),
+        OsStr::new("-o"),
+        report.as_os_str(),
+        OsStr::new("--start"),
+        OsStr::new("Corridor"),
+        OsStr::new("--require-reachable"),
+        OsStr::new("Room 2"),
+    ]);
+    assert_eq!(
+        code, 0,
+        "the original 0.80 m door is RESTRICTED but passable: {err}"
+    );
+}
+
+/// Reads a binary PGM (P5): width, height, max value and pixels.
+fn read_pgm(bytes: &[u8]) -> (usize, usize, u32, Vec<u8>) {
+    let mut fields = Vec::new();
+    let mut i = 0;
+    while fields.len() < 4 {
+        while bytes[i].is_ascii_whitespace() {
+            i += 1;
+        }
+        if bytes[i] == b'#' {
+            while bytes[i] != b'\n' {
+                i += 1;
+            }
+            continue;
+        }
+        let s = i;
+        while !bytes[i].is_ascii_whitespace() {
+            i += 1;
+        }
+        fields.push(String::from_utf8(bytes[s..i].to_vec()).unwrap());
+    }
+    assert_eq!(fields[0], "P5");
+    let (w, h, max) = (
+        fields[1].parse().unwrap(),
+        fields[2].parse().unwrap(),
+        fields[3].parse().unwrap(),
+    );
+    (w, h, max, bytes[i + 1..].to_vec())
+}
+
+#[test]
+fn nav2_bundle_of_office_a_follows_the_map_server_conventions() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("nav2");
+    let file = common::shared().join("ifc/office-a.ifc");
+    let (code, _, err) = run(&[
+        OsStr::new("export"),
+        OsStr::new("nav2"),
+        file.as_os_str(),
+        OsStr::new("-o"),
+        out.as_os_str(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.join("README.md").exists());
+    let storey = out.join("00-level-1");
+    let yaml = std::fs::read_to_string(storey.join("map.yaml")).unwrap();
+    for key in [
+        "image: map.pgm",
+        "resolution: 0.05",
+        "origin: [",
+        "negate: 0",
+        "occupied_thresh: 0.65",
+        "mode: trinary",
+    ] {
+        assert!(yaml.contains(key), "{key} missing in\n{yaml}");
+    }
+    let (w, h, max, pixels) = read_pgm(&std::fs::read(storey.join("map.pgm")).unwrap());
+    assert_eq!(max, 255);
+    assert_eq!(pixels.len(), w * h);
+    assert!(
+        pixels.iter().all(|p| [0, 205, 254].contains(p)),
+        "trinary values only"
+    );
+    let free = pixels.iter().filter(|&&p| p == 254).count() as f64 * 0.05 * 0.05;
+    let occupied = pixels.iter().filter(|&&p| p == 0).count() as f64 * 0.05 * 0.05;
+    // Level 1 of office-a: about 1,900 m² of rooms and corridors, walls a few hundred m².
+    assert!((1000.0..3000.0).contains(&free), "free area {free} m²");
+    assert!(
+        (100.0..800.0).contains(&occupied),
+        "occupied area {occupied} m²"
+    );
+    let filters = std::fs::read_to_string(storey.join("costmap_filter_info.yaml")).unwrap();
+    assert!(
+        filters.contains("type: 0")
+            && filters.contains("type: 1")
+            && filters.contains("multiplier"),
+        "{filters}"
+    );
+    let graph: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(storey.join("route_graph.geojson")).unwrap())
+            .unwrap();
+    let features = graph["features"].as_array().unwrap();
+    let mut ids: Vec<u64> = features
+        .iter()
+        .map(|f| f["properties"]["id"].as_u64().unwrap())
+        .collect();
+    let n = ids.len();
+    ids.sort_unstable();
+    ids.dedup();
+    assert_eq!(ids.len(), n, "ids unique across nodes and edges");
+    let edges = features
+        .iter()
+        .filter(|f| f["geometry"]["type"] == "MultiLineString")
+        .count();
+    assert!(edges > 100, "{edges} edges");
+}
