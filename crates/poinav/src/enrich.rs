@@ -129,6 +129,22 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
             .map(|p| RobotProfile::load(p))
             .collect::<Result<Vec<_>, _>>()?
     };
+    // All outputs or none: refuse before writing anything when a folder is missing.
+    for out in [Some(&args.output), args.csv.as_ref(), args.ids.as_ref()]
+        .into_iter()
+        .flatten()
+    {
+        let dir = out
+            .parent()
+            .filter(|d| !d.as_os_str().is_empty())
+            .unwrap_or(std::path::Path::new("."));
+        anyhow::ensure!(
+            dir.is_dir(),
+            "cannot write {}: the folder {} does not exist",
+            out.display(),
+            dir.display()
+        );
+    }
     let size = std::fs::metadata(&args.input).map(|m| m.len()).unwrap_or(0);
     let bar = progress(size > 5_000_000 && !args.json);
     bar.set_message(format!("reading {}", args.input.display()));

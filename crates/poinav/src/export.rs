@@ -84,7 +84,7 @@ pub fn run(export: &Export) -> anyhow::Result<ExitCode> {
         meshes.failures.len()
     );
     for (id, err) in meshes.failures.iter().take(20) {
-        eprintln!("warning: {id}: {err}");
+        eprintln!("warning: {}", crate::with_id(id, err));
     }
     if meshes.failures.len() > 20 {
         eprintln!(

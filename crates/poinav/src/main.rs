@@ -49,6 +49,17 @@ enum Command {
     Patch(author::Patch),
 }
 
+/// `#id: message` for a problem of instance `id`, without repeating the id when the message
+/// already starts with it.
+pub fn with_id(id: impl std::fmt::Display, message: impl std::fmt::Display) -> String {
+    let (id, message) = (id.to_string(), message.to_string());
+    if message.starts_with(&format!("{id}:")) {
+        message
+    } else {
+        format!("{id}: {message}")
+    }
+}
+
 /// Exit code for unreadable input, or diagnostics under `--strict`.
 pub const EXIT_BAD_INPUT: u8 = 2;
 

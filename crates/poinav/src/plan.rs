@@ -76,5 +76,13 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         plan.doors.len(),
         plan.problems.len()
     );
+    for p in &plan.problems {
+        let fallback = if p.fell_back {
+            " (drawn from its footprint)"
+        } else {
+            " (left out)"
+        };
+        eprintln!("warning: {}{fallback}", crate::with_id(p.product, &p.error));
+    }
     Ok(ExitCode::SUCCESS)
 }

@@ -411,7 +411,8 @@ fn an_output_in_a_missing_folder_fails_cleanly_and_leaves_nothing() {
         assert!(
             first.starts_with("error: ")
                 && first.contains(&target.display().to_string())
-                && first.contains("No such file or directory"),
+                && (first.contains("No such file or directory")
+                    || first.contains("does not exist")),
             "{args:?}: {stderr}"
         );
         assert!(
@@ -501,4 +502,27 @@ fn an_interrupted_enrich_never_leaves_a_partial_output() {
         "uninterrupted run {full:?}; {complete} complete, {absent} absent, {leftovers} hidden temporary files left by SIGKILL"
     );
     assert_eq!(complete + absent, delays.len());
+}
+
+#[test]
+fn enrich_writes_no_output_when_another_output_cannot_be_written() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = common::shared().join("ifc/wall-opening-window-ifc4x3.ifc");
+    let ifc = dir.path().join("ok.ifc");
+    let csv = dir.path().join("no/such/x.csv");
+    let (code, _, err) = common::poinav(&[
+        OsStr::new("enrich"),
+        input.as_os_str(),
+        OsStr::new("-o"),
+        ifc.as_os_str(),
+        OsStr::new("--csv"),
+        csv.as_os_str(),
+    ]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("does not exist"), "{err}");
+    assert!(
+        !ifc.exists(),
+        "the IFC must not be written when the CSV cannot be"
+    );
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
 }

@@ -201,7 +201,8 @@ fn glb(file: &Path, out: &Path) -> (BTreeSet<String>, Vec<String>) {
     (names, warnings)
 }
 
-/// `plan`: exit 0; the summary line's (items, doors, problems).
+/// `plan`: exit 0; the summary line's (items, doors, problems); one stderr warning per
+/// problem, naming its `#id`.
 fn plan(file: &Path, out: &Path) -> (usize, usize, usize) {
     let (code, stdout, stderr) = run(&[
         OsStr::new("plan"),
@@ -220,6 +221,16 @@ fn plan(file: &Path, out: &Path) -> (usize, usize, usize) {
         .split(", ")
         .map(|p| p.split(' ').next().unwrap().parse().unwrap())
         .collect();
+    let warnings: Vec<&str> = stderr
+        .lines()
+        .filter(|l| l.starts_with("warning: #"))
+        .collect();
+    assert_eq!(
+        warnings.len(),
+        nums[2],
+        "{}: one warning per problem: {stderr}",
+        file.display()
+    );
     (nums[0], nums[1], nums[2])
 }
 
@@ -267,8 +278,13 @@ fn damaged_geometry_drops_only_the_damaged_wall_and_names_it() {
             set(&["Door 1", "Slab", "Wall B", "Wall C"]),
             "{name}"
         );
-        assert_eq!(warnings, vec![format!("warning: #100: {why}")], "{name}");
-        // The plan keeps the other four items and counts the one problem (it names no #id).
+        let expected = if why.starts_with("#100:") {
+            format!("warning: {why}")
+        } else {
+            format!("warning: #100: {why}")
+        };
+        assert_eq!(warnings, vec![expected], "{name}");
+        // The plan keeps the other four items and names the one problem (#100) on stderr.
         assert_eq!(
             plan(&file, &dir.join(format!("{name}.svg"))),
             (4, 1, 1),
