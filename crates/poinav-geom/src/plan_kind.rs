@@ -99,7 +99,10 @@ pub fn plan_kind(product: Entity<'_>) -> Option<PlanItemKind> {
     if is("IfcFeatureElement") || is("IfcVirtualElement") || !is("IfcElement") {
         return None;
     }
-    let predefined = product.get_str("PredefinedType");
+    // PredefinedType is an enumeration: read it as one (`get_str` is for strings).
+    let predefined = product
+        .get("PredefinedType")
+        .and_then(|v| v.as_enum().map(str::to_string));
     if (is("IfcSlab") && matches!(predefined.as_deref(), Some("FLOOR" | "BASESLAB")))
         || (is("IfcCovering") && predefined.as_deref() == Some("FLOORING"))
     {

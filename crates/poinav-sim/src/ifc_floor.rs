@@ -3,10 +3,14 @@
 
 use std::collections::HashMap;
 
-use poinav_geom::{floor_plans, FloorPlan, PlanItemKind, PlanOptions};
+use poinav_geom::{
+    floor_plans, floor_plans_with_meshes, mesh_model, FloorPlan, PlanItemKind, PlanOptions,
+};
 use poinav_ifc::Model;
 use poinav_nav::{Floor, FloorDoor, FloorObstacle, FloorZone, ObstacleKind};
 use poinav_poi::{AccessibilityStatus, Classification, Classified, Role};
+
+use crate::vertical::{vertical_connections, Dropped};
 
 /// The converter the simulator calls for IFC buildings: the storey named `storey` (or the
 /// lowest storey with doors) as a [`Floor`].
@@ -142,15 +146,30 @@ pub fn floor_from_plan(plan: &FloorPlan, classification: &Classification) -> Flo
 }
 
 /// Every storey of `model` as a floor (storeys without doors or spaces included), for
-/// navigation: a [`poinav_nav::Building`] without vertical connections (stairs, ramps and lifts
-/// between storeys are not derived from IFC yet, so routes stay on one storey).
+/// navigation: a [`poinav_nav::Building`] with the stairs, ramps and lifts that connect its
+/// storeys ([`crate::vertical`]).
 pub fn building_of(model: &Model, classification: &Classification) -> poinav_nav::Building {
-    let plans = floor_plans(model, &PlanOptions::default());
-    poinav_nav::Building {
-        floors: plans
-            .iter()
-            .map(|p| floor_from_plan(p, classification))
-            .collect(),
-        connections: Vec::new(),
-    }
+    building_and_dropped(model, classification).0
+}
+
+/// [`building_of`], and the stairs, ramps and lifts left out, with why.
+pub fn building_and_dropped(
+    model: &Model,
+    classification: &Classification,
+) -> (poinav_nav::Building, Vec<Dropped>) {
+    let meshes = mesh_model(model);
+    let plans = floor_plans_with_meshes(model, &meshes, &PlanOptions::default());
+    let floors: Vec<Floor> = plans
+        .iter()
+        .map(|p| floor_from_plan(p, classification))
+        .collect();
+    let clearance = (classification.profile.width_m / 2.0).max(0.25);
+    let vertical = vertical_connections(model, &meshes, &floors, clearance);
+    (
+        poinav_nav::Building {
+            floors,
+            connections: vertical.connections,
+        },
+        vertical.dropped,
+    )
 }

@@ -32,6 +32,7 @@ pub mod scenario;
 pub mod sensor;
 pub mod step;
 pub mod trace;
+pub mod vertical;
 pub mod world;
 
 pub use building::{prepare, FloorFromModel, Prepared};

@@ -1,0 +1,582 @@
+//! Vertical connections from IFC: the stairs and ramps (`IfcStair`, `IfcStairFlight`,
+//! `IfcRamp`, `IfcRampFlight`, flights and landings aggregated into their whole) and lifts
+//! (`IfcTransportElement` of type ELEVATOR, spaces named like lifts, stacked or spanning
+//! storeys) that join storeys, as [`VerticalConnection`]s with one landing per storey served.
+//!
+//! - The storeys a stair or ramp connects come from its meshes' lowest and highest z against
+//!   the storeys' elevations ([`STOREY_TOLERANCE_M`]; railings may rise above the top storey).
+//! - A landing is the XY of its vertices at that storey's floor, pushed out of its footprint
+//!   into free space: inside some zone of that storey and clear of its obstacles, else moved
+//!   around the footprint, else the connection is [`Dropped`] with the reason.
+//! - A lift serves every storey its spaces' (or elements') z-ranges reach with headroom; its
+//!   landing is in front of a door at its footprint, else beside it, else its centroid.
+//!
+//! Statuses per profile come from [`VerticalConnection::status`].
+
+use std::collections::BTreeMap;
+use std::sync::OnceLock;
+
+use glam::{DVec2, DVec3};
+use poinav_geom::region::{self, Region};
+use poinav_geom::{polygon, ElementMesh, Footprint, ModelMeshes};
+use poinav_ifc::{Entity, EntityId, Model};
+use poinav_nav::{ConnectionKind, Floor, Landing, VerticalConnection};
+use regex::Regex;
+
+/// How far a stair's or ramp's lowest point may be from a storey's floor (metres).
+pub const STOREY_TOLERANCE_M: f64 = 0.35;
+/// How far above the top storey's floor a stair may reach (its railings), metres.
+pub const RAILING_ALLOWANCE_M: f64 = 1.3;
+/// The headroom a lift space needs above a storey's floor for a stop there, metres.
+pub const LIFT_HEADROOM_M: f64 = 1.5;
+/// How far a landing stays outside the footprint of its stair, ramp or lift, metres.
+pub const FOOTPRINT_MARGIN_M: f64 = 0.3;
+/// How far a landing is searched beyond that margin, metres.
+pub const SEARCH_REACH_M: f64 = 2.0;
+
+/// A stair, ramp or lift found in the model that connects no storeys.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Dropped {
+    /// GlobalId.
+    pub id: String,
+    /// Name.
+    pub name: Option<String>,
+    /// What it would have been.
+    pub kind: ConnectionKind,
+    /// Why it was left out.
+    pub reason: String,
+}
+
+/// The vertical connections of a model and the candidates left out.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Vertical {
+    /// Stairs and ramps in file order of their wholes, then lifts in file order.
+    pub connections: Vec<VerticalConnection>,
+    /// Stairs, ramps and lifts that connect nothing, with why.
+    pub dropped: Vec<Dropped>,
+}
+
+/// True for a lift's name: `elevator`, `elev`, `lift`, Aufzug, Fahrstuhl, ascenseur, ascensor,
+/// ascensore; not the rooms around one (`ELEV EQ RM`, `lift lobby`, machine rooms).
+pub fn is_lift_name(name: &str) -> bool {
+    static LIFT: OnceLock<(Regex, Regex)> = OnceLock::new();
+    let (yes, no) = LIFT.get_or_init(|| {
+        (
+            Regex::new(r"(?i)\b(elev(ator)?|lifts?)\b|(?i)(aufzug|fahrstuhl|ascenseur|ascensor)")
+                .unwrap_or_else(|_| Regex::new("$^").expect("empty regex")),
+            Regex::new(
+                r"(?i)\b(eq|equip(ment)?|machine|mach|mech(anical)?|motor|lobby|hall|rm|room|vestibule|control)\b|(?i)(raum|vorraum|maschinen)",
+            )
+            .unwrap_or_else(|_| Regex::new("$^").expect("empty regex")),
+        )
+    });
+    yes.is_match(name) && !no.is_match(name)
+}
+
+/// Finds the vertical connections of `model` from its meshes, with landings on `floors` (the
+/// model's storeys as floors, sorted by elevation); `clearance_m` is how far a landing stays
+/// from obstacles (half the robot's width).
+pub fn vertical_connections(
+    model: &Model,
+    meshes: &ModelMeshes,
+    floors: &[Floor],
+    clearance_m: f64,
+) -> Vertical {
+    let mut out = Vertical::default();
+    stairs_and_ramps(model, meshes, floors, clearance_m, &mut out);
+    lifts(model, meshes, floors, clearance_m, &mut out);
+    out
+}
+
+/// The stair or ramp an element belongs to: its outermost `IfcStair`/`IfcRamp` whole, else
+/// itself when it is a stair, ramp or flight; `None` for anything else.
+fn transition_root(e: Entity<'_>) -> Option<(Entity<'_>, ConnectionKind)> {
+    let kind_of = |x: &Entity<'_>| {
+        if x.is_a("IfcStair") || x.is_a("IfcStairFlight") {
+            Some(ConnectionKind::Stair)
+        } else if x.is_a("IfcRamp") || x.is_a("IfcRampFlight") {
+            Some(ConnectionKind::Ramp)
+        } else {
+            None
+        }
+    };
+    if e.is_a("IfcRailing") {
+        return None;
+    }
+    let mut found = kind_of(&e).map(|k| (e, k));
+    let mut current = e;
+    for _ in 0..8 {
+        let Some(whole) = current
+            .inverse("Decomposes")
+            .into_iter()
+            .filter(|r| r.is_a("IfcRelAggregates"))
+            .find_map(|r| r.get_ref("RelatingObject"))
+        else {
+            break;
+        };
+        if let Some(k) = kind_of(&whole) {
+            found = Some((whole, k));
+        }
+        current = whole;
+    }
+    found
+}
+
+/// The item of enumeration attribute `name` (`.ELEVATOR.` is `ELEVATOR`).
+fn enum_attr<'m>(e: Entity<'m>, name: &str) -> Option<&'m str> {
+    e.get(name).and_then(|v| v.as_enum())
+}
+
+struct Group<'a> {
+    root: EntityId,
+    id: String,
+    name: Option<String>,
+    kind: ConnectionKind,
+    multi_run: bool,
+    members: Vec<&'a ElementMesh>,
+    flights: Vec<&'a ElementMesh>,
+}
+
+fn stairs_and_ramps(
+    model: &Model,
+    meshes: &ModelMeshes,
+    floors: &[Floor],
+    clearance_m: f64,
+    out: &mut Vertical,
+) {
+    let mut groups: BTreeMap<usize, Group<'_>> = BTreeMap::new();
+    for m in &meshes.elements {
+        let Some(e) = model.entity(m.product) else {
+            continue;
+        };
+        let Some((root, kind)) = transition_root(e) else {
+            continue;
+        };
+        let g = groups.entry(root.position()).or_insert_with(|| Group {
+            root: root.id(),
+            id: root
+                .global_id()
+                .unwrap_or_else(|| format!("#{}", root.id())),
+            name: root.name(),
+            kind,
+            multi_run: enum_attr(root, "PredefinedType")
+                .or_else(|| enum_attr(root, "ShapeType"))
+                .is_some_and(|t| {
+                    t.contains("TURN") || t.starts_with("TWO_") || t.contains("WINDING")
+                }),
+            members: Vec::new(),
+            flights: Vec::new(),
+        });
+        g.members.push(m);
+        if (e.is_a("IfcStairFlight") || e.is_a("IfcRampFlight")) && e.id() != g.root {
+            g.flights.push(m);
+        }
+    }
+    for g in groups.into_values() {
+        match stair_or_ramp(&g, floors, clearance_m) {
+            Ok(c) => out.connections.push(c),
+            Err(reason) => out.dropped.push(Dropped {
+                id: g.id.clone(),
+                name: g.name.clone(),
+                kind: g.kind,
+                reason,
+            }),
+        }
+    }
+}
+
+fn points_of<'a>(meshes: impl IntoIterator<Item = &'a ElementMesh>) -> Vec<DVec3> {
+    meshes
+        .into_iter()
+        .flat_map(|m| m.mesh.positions.iter().copied())
+        .filter(|p| p.is_finite())
+        .collect()
+}
+
+/// The storey whose floor is nearest `z`, within [`STOREY_TOLERANCE_M`].
+fn storey_at(floors: &[Floor], z: f64) -> Option<usize> {
+    floors
+        .iter()
+        .enumerate()
+        .map(|(i, f)| ((f.elevation_m - z).abs(), i))
+        .filter(|(d, _)| *d <= STOREY_TOLERANCE_M)
+        .min_by(|a, b| a.0.total_cmp(&b.0))
+        .map(|(_, i)| i)
+}
+
+fn stair_or_ramp(
+    g: &Group<'_>,
+    floors: &[Floor],
+    clearance_m: f64,
+) -> Result<VerticalConnection, String> {
+    let points = points_of(g.members.iter().copied());
+    let hull = Footprint::convex_hull_of(&points)
+        .ok_or_else(|| "its meshes have no footprint".to_string())?;
+    let (z0, z1) = (hull.z_min, hull.z_max);
+    let bottom = storey_at(floors, z0).ok_or_else(|| {
+        format!(
+            "its lowest point (z = {z0:.2} m) is at no storey's floor (tolerance {STOREY_TOLERANCE_M} m)"
+        )
+    })?;
+    let e0 = floors[bottom].elevation_m;
+    let top = floors
+        .iter()
+        .enumerate()
+        .filter(|(_, f)| {
+            f.elevation_m > e0 + 1.0
+                && f.elevation_m <= z1 + STOREY_TOLERANCE_M
+                && f.elevation_m >= z1 - RAILING_ALLOWANCE_M
+        })
+        .max_by(|a, b| a.1.elevation_m.total_cmp(&b.1.elevation_m))
+        .map(|(i, _)| i)
+        .ok_or_else(|| {
+            format!(
+                "it rises from storey `{}` to z = {z1:.2} m, no other storey's floor",
+                floors[bottom].name
+            )
+        })?;
+    let e1 = floors[top].elevation_m;
+    let near = |e: f64, lo: f64, hi: f64| -> Option<DVec2> {
+        let pts: Vec<DVec2> = points
+            .iter()
+            .filter(|p| p.z >= e + lo && p.z <= e + hi)
+            .map(|p| p.truncate())
+            .collect();
+        (!pts.is_empty()).then(|| pts.iter().copied().sum::<DVec2>() / pts.len() as f64)
+    };
+    let foot = near(e0, -0.3, 0.3)
+        .or_else(|| near(z0, 0.0, 0.3))
+        .unwrap_or(hull.centroid());
+    let head = near(e1, -0.3, 0.05)
+        .or_else(|| near(z1, -0.3, 0.0))
+        .unwrap_or(hull.centroid());
+    let what = g.kind.label();
+    let mut landings = Vec::new();
+    for (floor, at, end) in [(bottom, foot, "foot"), (top, head, "top")] {
+        let point = landing_beside(&floors[floor], &hull.polygon, at, clearance_m, &[])
+            .ok_or_else(|| {
+                format!(
+                    "no free spot in a zone of storey `{}` within {SEARCH_REACH_M} m of the {what}'s {end} ({:.2}, {:.2})",
+                    floors[floor].name, at.x, at.y
+                )
+            })?;
+        landings.push(Landing { floor, point });
+    }
+    let rects: Vec<_> = if g.flights.is_empty() {
+        vec![hull.min_area_rectangle()]
+    } else {
+        g.flights
+            .iter()
+            .map(|f| {
+                Footprint::convex_hull_of(&f.mesh.positions).and_then(|h| h.min_area_rectangle())
+            })
+            .collect()
+    };
+    let rects: Vec<_> = rects.into_iter().flatten().collect();
+    let mut width = rects.iter().map(|r| r.width).fold(f64::INFINITY, f64::min);
+    if g.flights.is_empty() && g.multi_run {
+        width /= 2.0;
+    }
+    let run: f64 = rects.iter().map(|r| r.length).sum();
+    let slope = (g.kind == ConnectionKind::Ramp && run > 0.0)
+        .then(|| ((e1 - e0) / run).atan().to_degrees());
+    Ok(VerticalConnection {
+        id: g.id.clone(),
+        name: g.name.clone(),
+        kind: g.kind,
+        landings,
+        clear_width_m: width.is_finite().then_some(width),
+        slope_deg: slope,
+        travel_time_s: None,
+    })
+}
+
+/// True when `p` is inside a zone of `floor` (other than the zones `except`) and at least
+/// `clearance_m` from every obstacle.
+fn free(floor: &Floor, p: DVec2, clearance_m: f64, except: &[&str]) -> bool {
+    let in_zone = floor
+        .zones
+        .iter()
+        .any(|z| !except.contains(&z.id.as_str()) && polygon::contains(&z.ring, p));
+    in_zone
+        && floor.obstacles.iter().all(|o| {
+            o.rings.iter().all(|r| {
+                let (lo, hi) = polygon::bounds(r);
+                let c = DVec2::splat(clearance_m);
+                if p.cmplt(lo - c).any() || p.cmpgt(hi + c).any() {
+                    return true;
+                }
+                !polygon::contains(r, p) && polygon::distance_to_boundary(r, p) >= clearance_m
+            })
+        })
+}
+
+/// A free spot outside `footprint` near `from`: first along the direction from the
+/// footprint's centroid to `from`, then turning away from it in 15 degree steps; `None` when
+/// there is none within [`SEARCH_REACH_M`] beyond [`FOOTPRINT_MARGIN_M`].
+fn landing_beside(
+    floor: &Floor,
+    footprint: &[DVec2],
+    from: DVec2,
+    clearance_m: f64,
+    except: &[&str],
+) -> Option<DVec2> {
+    let c = polygon::centroid(footprint);
+    let base = (from - c).try_normalize().unwrap_or(DVec2::X);
+    let outside = |p: DVec2| {
+        !polygon::contains(footprint, p)
+            && polygon::distance_to_boundary(footprint, p) >= FOOTPRINT_MARGIN_M
+    };
+    let mut turns = vec![0.0];
+    for k in 1..=12 {
+        let a = (15.0 * k as f64).to_radians();
+        turns.push(a);
+        if k < 12 {
+            turns.push(-a);
+        }
+    }
+    for a in turns {
+        let d = DVec2::from_angle(a).rotate(base);
+        let mut r = 0.0;
+        while r < 20.0 && !outside(from + d * r) {
+            r += 0.05;
+        }
+        let mut s = 0.0;
+        while s <= SEARCH_REACH_M + 1e-9 {
+            let p = from + d * (r + s);
+            if free(floor, p, clearance_m, except) {
+                return Some(p);
+            }
+            s += 0.1;
+        }
+    }
+    None
+}
+
+struct LiftUnit {
+    id: String,
+    name: Option<String>,
+    position: usize,
+    hull: Footprint,
+}
+
+fn lifts(
+    model: &Model,
+    meshes: &ModelMeshes,
+    floors: &[Floor],
+    clearance_m: f64,
+    out: &mut Vertical,
+) {
+    let mut units: Vec<LiftUnit> = Vec::new();
+    for m in meshes.elements.iter().chain(&meshes.spaces) {
+        let Some(e) = model.entity(m.product) else {
+            continue;
+        };
+        let is_lift = if e.is_a("IfcSpace") {
+            let long = e.get_str("LongName");
+            let named = [m.name.as_deref(), long.as_deref()]
+                .into_iter()
+                .flatten()
+                .any(is_lift_name);
+            named
+        } else {
+            e.is_a("IfcTransportElement")
+                && ["PredefinedType", "OperationType"]
+                    .iter()
+                    .any(|a| enum_attr(e, a) == Some("ELEVATOR"))
+        };
+        if !is_lift {
+            continue;
+        }
+        let Some(hull) = Footprint::convex_hull_of(&m.mesh.positions) else {
+            continue;
+        };
+        let long = e.get_str("LongName").filter(|s| !s.is_empty());
+        units.push(LiftUnit {
+            id: m.global_id.clone(),
+            name: match (&m.name, long) {
+                (Some(n), Some(l)) if *n != l => Some(format!("{l} {n}")),
+                (n, l) => l.or_else(|| n.clone()),
+            },
+            position: e.position(),
+            hull,
+        });
+    }
+    units.sort_by_key(|u| u.position);
+    // Stacks: units whose footprints overlap by 30 % of the smaller one.
+    let regions: Vec<Vec<Region>> = units
+        .iter()
+        .map(|u| {
+            Region::from_ring(u.hull.polygon.clone())
+                .into_iter()
+                .collect()
+        })
+        .collect();
+    let mut stack: Vec<usize> = (0..units.len()).collect();
+    for i in 0..units.len() {
+        for j in 0..i {
+            let common = region::total_area(&region::intersection(&regions[i], &regions[j]));
+            if common >= 0.3 * units[i].hull.area().min(units[j].hull.area()) {
+                let (a, b) = (root(&stack, i), root(&stack, j));
+                stack[a.max(b)] = a.min(b);
+            }
+        }
+    }
+    let mut stacks: BTreeMap<usize, Vec<usize>> = BTreeMap::new();
+    for i in 0..units.len() {
+        stacks.entry(root(&stack, i)).or_default().push(i);
+    }
+    for members in stacks.into_values() {
+        let first = &units[members[0]];
+        let mut stops: BTreeMap<usize, &LiftUnit> = BTreeMap::new();
+        for &i in &members {
+            let u = &units[i];
+            for (k, f) in floors.iter().enumerate() {
+                if f.elevation_m >= u.hull.z_min - STOREY_TOLERANCE_M
+                    && f.elevation_m <= u.hull.z_max - LIFT_HEADROOM_M
+                {
+                    stops.entry(k).or_insert(u);
+                }
+            }
+        }
+        let mut landings = Vec::new();
+        let mut widths = Vec::new();
+        let mut missing = Vec::new();
+        for (&k, u) in &stops {
+            match lift_landing(&floors[k], u, clearance_m) {
+                Some((point, width)) => {
+                    landings.push(Landing { floor: k, point });
+                    widths.extend(width);
+                }
+                None => missing.push(floors[k].name.clone()),
+            }
+        }
+        if landings.len() < 2 {
+            let reason = if stops.len() < 2 {
+                format!(
+                    "it serves {} storey(s) (z {:.2}..{:.2} m)",
+                    stops.len(),
+                    first.hull.z_min,
+                    first.hull.z_max
+                )
+            } else {
+                format!(
+                    "no free spot in a zone beside it on storey(s) {}",
+                    missing.join(", ")
+                )
+            };
+            out.dropped.push(Dropped {
+                id: first.id.clone(),
+                name: first.name.clone(),
+                kind: ConnectionKind::Lift,
+                reason,
+            });
+            continue;
+        }
+        out.connections.push(VerticalConnection {
+            id: first.id.clone(),
+            name: first.name.clone(),
+            kind: ConnectionKind::Lift,
+            landings,
+            clear_width_m: widths.into_iter().reduce(f64::min),
+            slope_deg: None,
+            travel_time_s: None,
+        });
+    }
+}
+
+fn root(parent: &[usize], mut i: usize) -> usize {
+    while parent[i] != i {
+        i = parent[i];
+    }
+    i
+}
+
+/// The landing of lift `u` on `floor`: in front of the door nearest its footprint (with the
+/// door's clear width), else a free spot beside it (its own zone, a shaft without a modelled
+/// door, is left out), else its centroid.
+fn lift_landing(floor: &Floor, u: &LiftUnit, clearance_m: f64) -> Option<(DVec2, Option<f64>)> {
+    let ring = &u.hull.polygon;
+    let c = polygon::centroid(ring);
+    let door = floor
+        .doors
+        .iter()
+        .map(|d| {
+            let dist = if polygon::contains(ring, d.center) {
+                0.0
+            } else {
+                polygon::distance_to_boundary(ring, d.center)
+            };
+            (dist, d)
+        })
+        .filter(|(dist, _)| *dist <= 0.75)
+        .min_by(|a, b| a.0.total_cmp(&b.0));
+    if let Some((_, d)) = door {
+        if let Some(p) = landing_beside(floor, ring, d.center, clearance_m, &[u.id.as_str()]) {
+            return Some((
+                p,
+                Some(d.clear_width_m).filter(|w| w.is_finite() && *w > 0.0),
+            ));
+        }
+    }
+    // Beside it: of the first free spots in each direction, the one in the zone with the most
+    // doors (a corridor or lobby rather than a closed room beside the shaft).
+    let doors_of = |p: DVec2| {
+        floor
+            .zones
+            .iter()
+            .filter(|z| z.id != u.id && polygon::contains(&z.ring, p))
+            .map(|z| {
+                floor
+                    .doors
+                    .iter()
+                    .filter(|d| {
+                        polygon::contains(&z.ring, d.center)
+                            || polygon::distance_to_boundary(&z.ring, d.center) <= 0.5
+                    })
+                    .count()
+            })
+            .max()
+            .unwrap_or(0)
+    };
+    let mut best: Option<(usize, DVec2)> = None;
+    for k in 0..24 {
+        let d = DVec2::from_angle((15.0 * k as f64).to_radians());
+        if let Some(p) = landing_beside(floor, ring, c + d * 0.01, clearance_m, &[u.id.as_str()]) {
+            let n = doors_of(p);
+            if best.is_none_or(|(m, _)| n > m) {
+                best = Some((n, p));
+            }
+        }
+    }
+    best.map(|(_, p)| (p, None))
+        .or_else(|| free(floor, c, clearance_m, &[]).then_some((c, None)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn lift_names_but_not_the_rooms_around_lifts() {
+        for yes in [
+            "ELEV",
+            "Elevator 2",
+            "Lift",
+            "Aufzug",
+            "Personenaufzug",
+            "ascenseur",
+        ] {
+            assert!(is_lift_name(yes), "{yes}");
+        }
+        for no in [
+            "ELEV EQ RM",
+            "Lift lobby",
+            "Aufzugsmaschinenraum",
+            "Elevation",
+            "Stair",
+        ] {
+            assert!(!is_lift_name(no), "{no}");
+        }
+    }
+}
