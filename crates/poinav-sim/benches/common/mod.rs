@@ -1,6 +1,9 @@
 //! Buildings and robot placements shared by the simulator benchmarks: the paper's test building
 //! and office-a.ifc's "Level 1" as floors, and free start spots inside their zones.
 
+// Each bench binary uses its own subset of these helpers.
+#![allow(dead_code)]
+
 use std::path::PathBuf;
 
 use glam::DVec2;
