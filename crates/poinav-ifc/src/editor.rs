@@ -33,6 +33,10 @@ pub enum EditError {
     /// The attribute does not exist or the instance cannot be parsed.
     #[error(transparent)]
     Attribute(#[from] AttrError),
+    /// The file has text that is not a well-formed instance: where instances begin and end is
+    /// uncertain (an unclosed quote can run into added lines), so nothing is added.
+    #[error("line {line}: the file has damaged instance text ({message}); poinav adds nothing to it, as the copy could not be read back the same way")]
+    DamagedText { line: usize, message: String },
     /// `remove` was called after `add` (ids of added instances would depend on the order).
     #[error("{0}: instances must be removed before any is added")]
     RemoveAfterAdd(EntityId),
@@ -121,6 +125,17 @@ impl<'m> Editor<'m> {
         let next = match self.next_id {
             Some(n) => n,
             None => {
+                if let Some(d) = self
+                    .model
+                    .diagnostics()
+                    .iter()
+                    .find(|d| d.kind == crate::DiagnosticKind::Syntax)
+                {
+                    return Err(EditError::DamagedText {
+                        line: d.line.unwrap_or(0),
+                        message: d.message.clone(),
+                    });
+                }
                 let max = (0..self.model.len())
                     .filter(|p| !self.removed.contains(&(*p as u32)))
                     .map(|p| self.model.max_id_used_at(p))
@@ -402,8 +417,33 @@ impl<'m> Editor<'m> {
             .collect();
         touched.sort_unstable();
         touched.dedup();
+        // New instances go right after the last kept instance, each on a line of its own: before
+        // any damaged text that may follow it, which could otherwise swallow them (an unclosed
+        // quote) when the file is read again.
+        let insert_at = self
+            .model
+            .instances
+            .iter()
+            .enumerate()
+            .rev()
+            .find(|(p, _)| !self.removed.contains(&(*p as u32)))
+            .map(|(_, inst)| inst.end);
+        let nl = self.newline();
+        let mut inserted = self.added.is_empty();
+        let emit = |out: &mut Vec<u8>| {
+            for (_, line) in &self.added {
+                out.extend_from_slice(nl);
+                out.extend_from_slice(line.as_bytes());
+            }
+        };
         for pos in touched {
             let inst = &self.model.instances[pos as usize];
+            if let Some(at) = insert_at.filter(|&at| !inserted && inst.start >= at) {
+                out.extend_from_slice(&bytes[cursor..at]);
+                emit(&mut out);
+                cursor = at;
+                inserted = true;
+            }
             out.extend_from_slice(&bytes[cursor..inst.start]);
             cursor = inst.end;
             if let Some(text) = self.replaced.get(&pos) {
@@ -418,17 +458,28 @@ impl<'m> Editor<'m> {
             }
         }
         let data_end = self.model.data_end();
-        out.extend_from_slice(&bytes[cursor..data_end]);
-        if !self.added.is_empty() {
-            let nl = self.newline();
-            if !matches!(out.last(), Some(b'\n' | b'\r')) {
-                out.extend_from_slice(nl);
-            }
-            for (_, line) in &self.added {
-                out.extend_from_slice(line.as_bytes());
-                out.extend_from_slice(nl);
+        if !inserted {
+            match insert_at {
+                Some(at) if at >= cursor => {
+                    out.extend_from_slice(&bytes[cursor..at]);
+                    emit(&mut out);
+                    cursor = at;
+                }
+                _ => {
+                    // No instance is kept: the new ones open the DATA section.
+                    out.extend_from_slice(&bytes[cursor..data_end]);
+                    cursor = data_end;
+                    if !matches!(out.last(), Some(b'\n' | b'\r')) {
+                        out.extend_from_slice(nl);
+                    }
+                    for (_, line) in &self.added {
+                        out.extend_from_slice(line.as_bytes());
+                        out.extend_from_slice(nl);
+                    }
+                }
             }
         }
+        out.extend_from_slice(&bytes[cursor..data_end]);
         out.extend_from_slice(&bytes[data_end..]);
         out
     }
@@ -489,6 +540,43 @@ mod tests {
         let door = again.entity(EntityId(2)).unwrap();
         let sets = crate::property::property_sets(door);
         assert_eq!(sets[0].name, "Pset_Test");
+    }
+
+    #[test]
+    fn new_instances_follow_the_last_instance_and_damaged_text_gets_none() {
+        // Found by the enrichment fuzz target: with damaged text after an instance (an unclosed
+        // quote), added lines were swallowed when the output was read again. New instances go
+        // right after the last instance, and a file with damaged instance text gets none.
+        let owner = || {
+            vec![
+                Arg::Null,
+                Arg::Null,
+                Arg::Null,
+                Arg::Enum("ADDED".into()),
+                Arg::Null,
+                Arg::Null,
+                Arg::Null,
+                Arg::Integer(0),
+            ]
+        };
+        let m = Model::from_bytes("x.ifc", FILE.into()).unwrap();
+        let mut ed = Editor::new(&m);
+        ed.add("IfcOwnerHistory", owner()).unwrap();
+        let out = String::from_utf8(ed.to_bytes()).unwrap();
+        assert!(
+            out.contains("#9=IFCOWNERHISTORY($,$,$,.ADDED.,$,$,$,0);\n#10=IFCOWNERHISTORY("),
+            "{out}"
+        );
+        let text = FILE.replace(
+            "#9=IFCOWNERHISTORY($,$,$,.ADDED.,$,$,$,0);\n",
+            "#9=IFCOWNERHISTORY($,$,$,.ADDED.,$,$,$,0);\njunk;\n",
+        );
+        let m = Model::from_bytes("x.ifc", text.into()).unwrap();
+        let err = Editor::new(&m).add("IfcOwnerHistory", owner()).unwrap_err();
+        assert!(
+            matches!(err, EditError::DamagedText { line: 11, .. }),
+            "{err}"
+        );
     }
 
     #[test]
