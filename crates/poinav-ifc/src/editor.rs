@@ -428,7 +428,14 @@ impl<'m> Editor<'m> {
             .rev()
             .find(|(p, _)| !self.removed.contains(&(*p as u32)))
             .map(|(_, inst)| inst.end);
-        let nl = self.newline();
+        // The line end the new lines use: the one after the last kept instance (so reading the
+        // copy again finds the same one), else the file's first.
+        let nl: &[u8] = match insert_at.map(|at| &bytes[at..]) {
+            Some(rest) if rest.starts_with(b"\r\n") => b"\r\n",
+            Some(rest) if rest.starts_with(b"\r") => b"\r",
+            Some(rest) if rest.starts_with(b"\n") => b"\n",
+            _ => self.newline(),
+        };
         let mut inserted = self.added.is_empty();
         let emit = |out: &mut Vec<u8>| {
             for (_, line) in &self.added {
