@@ -15,9 +15,23 @@ use crate::unit_assignment::Units;
 /// The mesh of an `IfcExtrudedAreaSolid` in the coordinates of the representation it is an
 /// item of (metres): its `Position` applied.
 pub fn extruded_area_solid(item: Entity<'_>, units: &Units) -> Result<Mesh, GeomError> {
-    let s = units.metres_per_unit;
     let profile = required_ref(&item, "SweptArea", "IfcProfileDef")?;
     let areas = profile::areas(profile, units)?;
+    let (position, sweep) = extrusion_frame(item, units)?;
+    let mut mesh = extrude(&areas, sweep).ok_or_else(|| {
+        degenerate(
+            &item,
+            "the profile cannot be triangulated or is swept along its own plane",
+        )
+    })?;
+    mesh.transform(&position);
+    Ok(mesh)
+}
+
+/// The `Position` of an `IfcExtrudedAreaSolid` and its sweep (ExtrudedDirection x Depth), both
+/// in metres; an error when Depth is missing or not positive.
+pub fn extrusion_frame(item: Entity<'_>, units: &Units) -> Result<(DAffine3, DVec3), GeomError> {
+    let s = units.metres_per_unit;
     let position = match item.get("Position") {
         Some(_) => axis2placement_3d(
             item.get_ref("Position")
@@ -33,14 +47,7 @@ pub fn extruded_area_solid(item: Entity<'_>, units: &Units) -> Result<Mesh, Geom
     if !(depth.is_finite() && depth > 0.0) {
         return Err(degenerate(&item, "Depth is not a positive number"));
     }
-    let mut mesh = extrude(&areas, dir * depth * s).ok_or_else(|| {
-        degenerate(
-            &item,
-            "the profile cannot be triangulated or is swept along its own plane",
-        )
-    })?;
-    mesh.transform(&position);
-    Ok(mesh)
+    Ok((position, dir * depth * s))
 }
 
 /// The closed mesh of `areas` (in the plane z = 0) swept by `sweep`, triangles facing out.

@@ -7,10 +7,9 @@ use std::collections::HashSet;
 use glam::{DAffine3, DVec2, DVec3};
 use poinav_ifc::{Entity, EntityId, Value};
 
-use crate::axis2_placement::{axis2placement, axis2placement_3d};
+use crate::axis2_placement::axis2placement;
 use crate::cartesian_point::{point3, point_list};
 use crate::cartesian_transformation_operator::transformation;
-use crate::direction::direction;
 use crate::error::{degenerate, missing, required_ref, unsupported, GeomError};
 use crate::polygon;
 use crate::profile;
@@ -258,26 +257,10 @@ fn extrusion(
     t: DAffine3,
     units: &Units,
 ) -> Result<(ItemGeometry, bool), GeomError> {
-    let s = units.metres_per_unit;
     let profile = required_ref(&item, "SweptArea", "IfcProfileDef")?;
     let outline = profile::outline(profile, units)?;
-    let position = match item.get("Position") {
-        Some(_) => axis2placement_3d(
-            item.get_ref("Position")
-                .ok_or_else(|| missing(&item, "Position"))?,
-            s,
-        )?,
-        None => DAffine3::IDENTITY,
-    };
-    let dir = direction(required_ref(&item, "ExtrudedDirection", "IfcDirection")?)?;
-    let depth = item
-        .get_f64("Depth")
-        .ok_or_else(|| missing(&item, "Depth"))?;
-    if !(depth.is_finite() && depth > 0.0) {
-        return Err(degenerate(&item, "Depth is not a positive number"));
-    }
+    let (position, sweep) = crate::extrusion::extrusion_frame(item, units)?;
     let m = t * position;
-    let sweep = dir * depth * s;
     let base: Vec<DVec3> = outline
         .iter()
         .map(|p| m.transform_point3(p.extend(0.0)))
