@@ -440,6 +440,48 @@ impl Controller {
         }
     }
 
+    /// A key pressed or released live at time `t` (a person driving): a controller that is not
+    /// key-driven hands over to the keys (the robot stops following its route or wall), and the
+    /// press is played at the next step like a scripted one. Returns false, ignoring it, when
+    /// it repeats the key's current state (auto-repeat), so events stay meaningful.
+    pub fn press(&mut self, t: f64, key: Key, down: bool, name: &str) -> bool {
+        if !matches!(self.kind, Kind::Keys { .. }) {
+            self.kind = Kind::Keys {
+                script: Vec::new(),
+                next: 0,
+                pressed: 0,
+            };
+            self.target = None;
+        }
+        let Kind::Keys {
+            script,
+            next,
+            pressed,
+        } = &mut self.kind
+        else {
+            return false;
+        };
+        // What the key's state will be once everything queued has been played.
+        let mut state = *pressed;
+        for &(_, k, d, _) in &script[*next..] {
+            if k != Key::Brush {
+                state = if d { state | k.bit() } else { state & !k.bit() };
+            }
+        }
+        if key != Key::Brush && (state & key.bit() != 0) == down {
+            return false;
+        }
+        if key == Key::Brush && !down {
+            return false;
+        }
+        // Played entries are no longer needed: keep the live script short.
+        script.drain(..*next);
+        *next = 0;
+        let t = script.last().map_or(t, |l| l.0.max(t));
+        script.push((t, key, down, name.to_string()));
+        true
+    }
+
     /// The waypoints it follows (empty while wall following or driven by keys).
     pub fn waypoints(&self) -> &[DVec2] {
         match &self.kind {

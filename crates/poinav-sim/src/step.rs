@@ -288,6 +288,53 @@ impl<'f> Sim<'f> {
         self.step
     }
 
+    /// The floor it runs on.
+    pub fn floor(&self) -> &'f Floor {
+        self.floor
+    }
+
+    /// The time of the next step, seconds.
+    pub fn time(&self) -> f64 {
+        self.step as f64 * self.opts.dt
+    }
+
+    /// The readings of the last [`Sim::tick`], one per robot (empty before the first).
+    pub fn readings(&self) -> &[Reading] {
+        &self.readings
+    }
+
+    /// The roles robot `i` perceived in the last [`Sim::tick`] (elements sensed, its zone, its
+    /// own C-2).
+    pub fn roles(&self, i: usize) -> Option<crate::poi_db::RoleSet> {
+        self.perceptions.get(i).map(|p| p.roles)
+    }
+
+    /// Robot `i`'s controller mode.
+    pub fn mode(&self, i: usize) -> Option<Mode> {
+        self.ctrls.get(i).map(|c| c.mode())
+    }
+
+    /// Events so far, in the order they happened.
+    pub fn events(&self) -> &[Event] {
+        &self.events
+    }
+
+    /// Takes the events so far out of the simulation (a live run that never finishes keeps
+    /// its memory bounded this way; [`Sim::finish`] then returns only later ones).
+    pub fn take_events(&mut self) -> Vec<Event> {
+        std::mem::take(&mut self.events)
+    }
+
+    /// A key of robot `i` pressed or released live (see [`Controller::press`]): it takes effect
+    /// at the next step. False when `i` is not a robot or the press changes nothing.
+    pub fn press(&mut self, i: usize, key: Key, down: bool, name: &str) -> bool {
+        let t = self.time();
+        match self.ctrls.get_mut(i) {
+            Some(c) => c.press(t, key, down, name),
+            None => false,
+        }
+    }
+
     /// The POI database.
     pub fn db(&self) -> &PoiDb {
         &self.db

@@ -7,6 +7,7 @@ mod export;
 mod inspect;
 mod navigate;
 mod plan;
+mod serve;
 mod simulate;
 
 use std::process::ExitCode;
@@ -42,6 +43,9 @@ enum Command {
     /// The main job end to end: test building, enrichment, the paper's three scenarios, design
     /// iteration, 3D export and an HTML report.
     Demo(demo::Args),
+    /// Start the browser viewer: the building in 3D and live robots driven with the keyboard
+    /// (Robot1: arrow keys, Robot2: W A S D), POI colours, events, trace playback, VR.
+    Serve(serve::Args),
     /// Write the paper's test building (IFC4X3_ADD2): a corridor with rooms on both sides.
     DemoBuilding(author::DemoBuildingArgs),
     /// Change a model for design iteration, losslessly otherwise.
@@ -74,6 +78,7 @@ fn main() -> ExitCode {
         Command::Export(export) => export::run(&export),
         Command::Simulate(args) => simulate::run(&args),
         Command::Demo(args) => demo::run(&args),
+        Command::Serve(args) => serve::run(&args),
         Command::DemoBuilding(args) => author::demo_building(&args),
         Command::Patch(author::Patch::DoorWidth(args)) => author::door_width(&args),
     };

@@ -1,0 +1,51 @@
+//! What the viewer shows: the building (GLB), what a click on an element reveals, the storey
+//! the robots drive on and the robots.
+
+use std::collections::BTreeMap;
+
+use poinav_nav::Floor;
+use poinav_sim::{RobotSetup, SimOptions};
+use serde::Serialize;
+
+/// One element as a click shows it.
+#[derive(Debug, Clone, Default, PartialEq, Serialize)]
+pub struct ElementInfo {
+    /// GlobalId.
+    #[serde(rename = "GlobalId")]
+    pub global_id: String,
+    /// IFC class.
+    #[serde(rename = "Class")]
+    pub class: String,
+    /// Name.
+    #[serde(rename = "Name")]
+    pub name: Option<String>,
+    /// Storey name.
+    #[serde(rename = "Storey")]
+    pub storey: Option<String>,
+    /// POI category, type, roles and accessibility status (as in the GLB's `extras`).
+    #[serde(rename = "POI")]
+    pub poi: BTreeMap<String, String>,
+    /// Property sets by name: property name -> value as text.
+    #[serde(rename = "PropertySets")]
+    pub property_sets: BTreeMap<String, BTreeMap<String, String>>,
+}
+
+/// Everything a viewer serves.
+#[derive(Debug, Clone)]
+pub struct Viewer {
+    /// Page title (the file name).
+    pub title: String,
+    /// The building, binary glTF (`poinav_export::glb::to_glb`: Y up, one node per element with
+    /// `extras` carrying GlobalId, class and POI data).
+    pub glb: Vec<u8>,
+    /// Click-to-inspect data by GlobalId.
+    pub elements: BTreeMap<String, ElementInfo>,
+    /// The storey the robots drive on.
+    pub floor: Floor,
+    /// The robots (index 0 is driven by the arrow keys, index 1 by W A S D).
+    pub robots: Vec<RobotSetup>,
+    /// Simulation settings (fixed step; `record` is turned off for a live run).
+    pub options: SimOptions,
+    /// Where the robots came from, in words (shown on the page).
+    pub source: String,
+}

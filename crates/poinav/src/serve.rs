@@ -1,0 +1,246 @@
+//! `poinav serve [FILE.ifc] [--scenario S]`: prepares the building (GLB, click-to-inspect data,
+//! the storey as a floor) and the robots, then runs the browser viewer (`poinav-viewer`) until
+//! interrupted.
+
+use std::collections::BTreeMap;
+use std::net::{IpAddr, Ipv4Addr, SocketAddr};
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use anyhow::Context;
+use poinav_export::SceneInput;
+use poinav_geom::{floor_plans_with_meshes, mesh_model, PlanOptions};
+use poinav_ifc::property::{property_sets, PropertyValue, Scalar, TypedScalar};
+use poinav_ifc::{spatial, units, Model};
+use poinav_poi::{classify, Classification, RobotProfile, RuleSet};
+use poinav_sim::{RobotSetup, Scenario, SimOptions};
+use poinav_viewer::{ElementInfo, ServerConfig, Viewer};
+
+/// Arguments of `poinav serve`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// The IFC file to show and drive in (never modified); optional with `--scenario`, whose
+    /// building is then used.
+    #[arg(required_unless_present = "scenario")]
+    file: Option<PathBuf>,
+    /// Robots (start poses, profiles, controllers) from this scenario file; without it two
+    /// key-driven robots start in the largest space.
+    #[arg(long)]
+    scenario: Option<PathBuf>,
+    /// The storey the robots drive on (Name or GlobalId; default: the lowest with doors).
+    #[arg(long)]
+    storey: Option<String>,
+    /// Robot profile (default: the paper's robot).
+    #[arg(long)]
+    profile: Option<PathBuf>,
+    /// Rule file extending the default POI rules.
+    #[arg(long)]
+    rules: Option<PathBuf>,
+    /// Address to listen on. The default is loopback (this machine only); any other address
+    /// makes the viewer reachable from the network.
+    #[arg(long, default_value_t = IpAddr::V4(Ipv4Addr::LOCALHOST))]
+    addr: IpAddr,
+    /// Port (0 picks a free one).
+    #[arg(long, default_value_t = 8080)]
+    port: u16,
+    /// Pages connected at once.
+    #[arg(long, default_value_t = 8)]
+    max_clients: usize,
+}
+
+fn text(s: &TypedScalar) -> String {
+    match &s.value {
+        Scalar::Text(t) => t.clone(),
+        Scalar::Real(r) => format!("{r}"),
+        Scalar::Integer(i) => i.to_string(),
+        Scalar::Bool(b) => b.to_string(),
+        Scalar::Logical(l) => l.map_or("UNKNOWN".into(), |b| b.to_string()),
+        Scalar::Enum(e) => e.clone(),
+        Scalar::Ref(id) => id.to_string(),
+    }
+}
+
+fn value_text(v: &PropertyValue) -> String {
+    let join = |l: &[TypedScalar]| l.iter().map(text).collect::<Vec<_>>().join("; ");
+    match v {
+        PropertyValue::Single(s) => s.as_ref().map(text).unwrap_or_default(),
+        PropertyValue::Enumerated(l) | PropertyValue::List(l) => join(l),
+        PropertyValue::Bounded(lo, hi) => format!(
+            "{} .. {}",
+            lo.as_ref().map(text).unwrap_or_default(),
+            hi.as_ref().map(text).unwrap_or_default()
+        ),
+        PropertyValue::Complex(p) => p
+            .iter()
+            .map(|p| format!("{}: {}", p.name, value_text(&p.value)))
+            .collect::<Vec<_>>()
+            .join("; "),
+        PropertyValue::Other(id) => id.to_string(),
+    }
+}
+
+/// The GLB and the click-to-inspect data of `model`, and the storey `storey` as a floor.
+fn building(
+    model: &Model,
+    classification: &Classification,
+    storey: Option<&str>,
+) -> anyhow::Result<(Vec<u8>, BTreeMap<String, ElementInfo>, poinav_nav::Floor)> {
+    let meshes = mesh_model(model);
+    let unit = units::length_unit(model);
+    let structure = spatial::spatial_structure(model, &unit);
+    let glb = poinav_export::glb::to_glb(&SceneInput {
+        storeys: &structure.storeys,
+        elements: &meshes.elements,
+        poi: Some(classification),
+    });
+    let storey_name = |id| {
+        structure
+            .storeys
+            .iter()
+            .find(|s| Some(s.id) == id)
+            .and_then(|s| s.name.clone())
+    };
+    let mut elements = BTreeMap::new();
+    for e in meshes.elements.iter().chain(&meshes.spaces) {
+        if e.global_id.is_empty() {
+            continue;
+        }
+        let mut info = ElementInfo {
+            global_id: e.global_id.clone(),
+            class: e.class.clone(),
+            name: e.name.clone(),
+            storey: storey_name(e.storey),
+            ..ElementInfo::default()
+        };
+        if let Some(c) = classification.get(e.product) {
+            let roles =
+                |r: &[poinav_poi::Role]| r.iter().map(|r| r.label()).collect::<Vec<_>>().join(";");
+            info.poi
+                .insert("POI_Category".into(), c.category.label().into());
+            info.poi
+                .insert("POI_Type".into(), c.poi_type.label().into());
+            info.poi
+                .insert("POI_PrimaryRoles".into(), roles(&c.primary));
+            info.poi
+                .insert("POI_ConditionalRoles".into(), roles(&c.conditional));
+            if let Some(a) = &c.accessibility {
+                info.poi
+                    .insert("AccessibilityStatus".into(), a.status.label().into());
+            }
+        }
+        if let Some(entity) = model.entity(e.product) {
+            for set in property_sets(entity) {
+                let props = set
+                    .properties
+                    .iter()
+                    .map(|p| (p.name.clone(), value_text(&p.value)))
+                    .collect();
+                info.property_sets.insert(set.name.clone(), props);
+            }
+        }
+        elements.insert(e.global_id.clone(), info);
+    }
+    let plans = floor_plans_with_meshes(model, &meshes, &PlanOptions::default());
+    let plan = poinav_sim::ifc_floor::pick(&plans, storey).map_err(anyhow::Error::msg)?;
+    let floor = poinav_sim::ifc_floor::floor_from_plan(plan, classification);
+    Ok((glb, elements, floor))
+}
+
+fn scenario_robots(s: &Scenario) -> (Vec<RobotSetup>, SimOptions) {
+    (
+        s.robots.iter().map(|r| r.setup.clone()).collect(),
+        SimOptions {
+            dt: s.dt,
+            start: s.start,
+            behaviour: s.behaviour.clone(),
+            ..SimOptions::default()
+        },
+    )
+}
+
+/// Runs `poinav serve`.
+pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
+    let profile = match &args.profile {
+        Some(p) => RobotProfile::load(p)?,
+        None => RobotProfile::paper(),
+    };
+    let rules = match &args.rules {
+        Some(p) => RuleSet::with_user_file(p)?,
+        None => RuleSet::defaults(),
+    };
+    let scenario = args.scenario.as_deref().map(Scenario::load).transpose()?;
+    let (model, classification, title) = match (&args.file, &scenario) {
+        (Some(file), _) => {
+            let model = Model::open(file)?;
+            let c = classify(&model, &rules, &profile);
+            (model, c, file.display().to_string())
+        }
+        (None, Some(s)) => {
+            let converter = poinav_sim::ifc_floor::converter();
+            let p = poinav_sim::prepare(s, None, Some(&converter))?;
+            (
+                p.model,
+                p.classification,
+                format!("{} (scenario building)", s.name),
+            )
+        }
+        (None, None) => anyhow::bail!("give an IFC file or --scenario"),
+    };
+    let storey = args
+        .storey
+        .as_deref()
+        .or(scenario.as_ref().and_then(|s| s.building.storey.as_deref()));
+    let (glb, elements, floor) = building(&model, &classification, storey)?;
+    let (robots, options, source) = match &scenario {
+        Some(s) => {
+            let (r, o) = scenario_robots(s);
+            (
+                r,
+                o,
+                format!("robots of scenario `{}` ({})", s.name, s.file),
+            )
+        }
+        None => (
+            poinav_viewer::default_robots(&floor, &profile)?,
+            SimOptions::default(),
+            "two robots in the largest space".to_string(),
+        ),
+    };
+    let viewer = Viewer {
+        title,
+        glb,
+        elements,
+        floor,
+        robots,
+        options,
+        source,
+    };
+    let config = ServerConfig {
+        addr: SocketAddr::new(args.addr, args.port),
+        max_clients: args.max_clients.max(1),
+        ..ServerConfig::default()
+    };
+    let runtime = tokio::runtime::Builder::new_multi_thread()
+        .worker_threads(2)
+        .enable_all()
+        .build()
+        .context("starting the server runtime")?;
+    runtime.block_on(async {
+        let bound = poinav_viewer::bind(config, viewer).await?;
+        let addr = bound.local_addr();
+        println!("poinav viewer: http://{addr}/");
+        println!("  Robot1: arrow keys, Robot2: W A S D, C: camera; Ctrl+C stops the server");
+        if !addr.ip().is_loopback() {
+            eprintln!(
+                "warning: listening on {}, reachable from the network; WebXR on another device needs HTTPS",
+                addr.ip()
+            );
+        }
+        bound
+            .run_until(async {
+                let _ = tokio::signal::ctrl_c().await;
+            })
+            .await
+    })?;
+    Ok(ExitCode::SUCCESS)
+}
