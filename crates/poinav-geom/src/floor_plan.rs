@@ -62,7 +62,7 @@ impl Default for PlanOptions {
 pub enum PlanSource {
     /// The section of its mesh by the band.
     Section,
-    /// The projection of its whole mesh (stairs, ramps).
+    /// The projection of its whole mesh (stairs, ramps, spaces modelled as open surfaces).
     Shadow,
     /// Its footprint (its mesh could not be made).
     Footprint,
@@ -346,6 +346,18 @@ fn draw<'m>(
     };
     let (regions, source) = match meshes.get(&product.id()) {
         Some(m) if matches!(kind, PlanItemKind::Stair | PlanItemKind::Ramp) => {
+            (mesh_shadow(&m.mesh), PlanSource::Shadow)
+        }
+        // A space modelled as an open surface (walls and floor, no ceiling: duplex-apartment's
+        // hallways) has no inside to cut: the air it bounds is its shadow, where it reaches
+        // into the band.
+        Some(m)
+            if kind == PlanItemKind::Space
+                && !crate::section::is_closed(&m.mesh)
+                && m.mesh
+                    .bounds()
+                    .is_some_and(|(lo, hi)| lo.z <= band.1 && hi.z >= band.0) =>
+        {
             (mesh_shadow(&m.mesh), PlanSource::Shadow)
         }
         Some(m) => (mesh_section(&m.mesh, band.0, band.1), PlanSource::Section),

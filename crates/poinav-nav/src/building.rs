@@ -252,6 +252,7 @@ mod tests {
             status,
             min_clearance_width_m: 0.9,
             roles: vec![],
+            spaces: None,
         }
     }
 

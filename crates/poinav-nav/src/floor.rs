@@ -55,6 +55,11 @@ pub struct FloorDoor {
     pub min_clearance_width_m: f64,
     /// POI roles (A-2, and B-2 when narrow).
     pub roles: Vec<Role>,
+    /// The ids ([`FloorZone::id`]) of the spaces the door bounds, when the model says so (in
+    /// IFC: `IfcRelSpaceBoundary`): one for an entrance, two for an interior door. `None`:
+    /// unknown, the sides come from geometry alone (see [`crate::graph::door_zones`]).
+    #[serde(default)]
+    pub spaces: Option<Vec<String>>,
 }
 
 /// A space (room, corridor) as a region.
@@ -119,12 +124,30 @@ impl Floor {
     }
 
     /// The frame of door `k`'s passage: of the two orientations of its ring, the one with
-    /// zones beyond more of its faces (a door joins two spaces); on a tie, [`FloorDoor::frame`].
+    /// more of the door's own spaces ([`FloorDoor::spaces`]) beyond its faces, else with zones
+    /// beyond more of its faces (a door joins two spaces); on a tie, [`FloorDoor::frame`].
+    /// The other orientation is a candidate only when it is at least the clear width wide.
     pub fn door_frame(&self, k: usize) -> Option<PassageFrame> {
         let d = self.doors.get(k)?;
         let f = d.frame()?;
-        let score = |f: &PassageFrame| crate::graph::frame_zones(self, f).iter().flatten().count();
         let g = f.swapped();
+        let w = d.clear_width_m;
+        if w.is_finite() && w > 0.0 && 2.0 * g.half_width < w - 1e-6 {
+            return Some(f);
+        }
+        let score = |f: &PassageFrame| {
+            let sides = crate::graph::frame_zones(self, f);
+            let own = sides
+                .iter()
+                .flatten()
+                .filter(|&&z| {
+                    d.spaces
+                        .as_ref()
+                        .is_some_and(|s| s.contains(&self.zones[z].id))
+                })
+                .count();
+            (own, sides.iter().flatten().count())
+        };
         if score(&g) > score(&f) {
             Some(g)
         } else {

@@ -1,6 +1,8 @@
 //! The topology graph of a building: a node per space (zone), per door or opening and per
-//! landing of a stair, ramp or lift; edges join each door to the zones on its two sides (found
-//! from geometry: which zone lies just beyond each face of the door's passage) and each
+//! landing of a stair, ramp or lift; edges join each door to the zones on its two sides (the
+//! spaces the model says the door bounds, `IfcRelSpaceBoundary` in IFC, placed on the sides
+//! geometry finds them; without that, from geometry: which zone lies just beyond each face of
+//! the door's passage) and each
 //! landing to its zone and to the other landings of its connection. Statuses are the
 //! profile's ([`Topology::statuses`]); the graph itself depends on geometry only.
 
@@ -103,7 +105,7 @@ pub struct DoorSides {
     /// Its node.
     pub node: usize,
     /// Zone index on the side against the passage frame's normal and along it; `None` is
-    /// outside the building (no zone within 0.5 m).
+    /// outside the building (no zone within 0.5 m, or the door bounds one space only).
     pub zones: [Option<usize>; 2],
 }
 
@@ -169,8 +171,76 @@ pub fn frame_zones(floor: &Floor, f: &crate::polygon::PassageFrame) -> [Option<u
     sides
 }
 
-/// The zones on the two sides of a door (see [`DoorSides::zones`]).
+/// The zones on the two sides of a door (see [`DoorSides::zones`]): from the spaces the door
+/// bounds ([`crate::FloorDoor::spaces`]) where given and present on the floor, each on the
+/// side where geometry finds it or else nearer to it, and nothing else (one space: an
+/// entrance); otherwise from geometry alone (the zones just beyond the passage's faces).
 pub fn door_zones(floor: &Floor, door: usize) -> [Option<usize>; 2] {
+    let geometric = geometric_door_zones(floor, door);
+    let d = &floor.doors[door];
+    let Some(ids) = d.spaces.as_ref().filter(|s| !s.is_empty()) else {
+        return geometric;
+    };
+    // The door's own spaces on this floor (a space may have several regions).
+    let own: Vec<usize> = (0..floor.zones.len())
+        .filter(|&z| ids.contains(&floor.zones[z].id))
+        .collect();
+    if own.is_empty() {
+        return geometric;
+    }
+    let frame = floor.door_frame(door);
+    let probe = |side: f64| match frame {
+        Some(f) => f.center + f.normal * side * (f.half_depth + 0.25),
+        None => d.center,
+    };
+    let mut sides = [None, None];
+    for s in 0..2 {
+        if let Some(z) = geometric[s].filter(|z| own.contains(z)) {
+            sides[s] = Some(z);
+        }
+    }
+    if sides[0].is_some() && sides[1].is_some() && sides[0] == sides[1] {
+        sides[1] = None;
+    }
+    // As many sides as the door has spaces (at most two), the missing ones filled with the
+    // nearest unused space.
+    let distinct = {
+        let mut v: Vec<&str> = own.iter().map(|&z| floor.zones[z].id.as_str()).collect();
+        v.sort_unstable();
+        v.dedup();
+        v.len().min(2)
+    };
+    while sides.iter().flatten().count() < distinct {
+        let used: Vec<&str> = sides
+            .iter()
+            .flatten()
+            .map(|&z| floor.zones[z].id.as_str())
+            .collect();
+        let mut best: Option<(f64, usize, usize)> = None;
+        for (s, side) in [(0, -1.0), (1, 1.0)] {
+            if sides[s].is_some() {
+                continue;
+            }
+            for &z in &own {
+                if used.contains(&floor.zones[z].id.as_str()) {
+                    continue;
+                }
+                let dist = polygon::area_distance(&floor.zones[z].ring, probe(side));
+                if best.is_none_or(|(bd, _, _)| dist < bd) {
+                    best = Some((dist, s, z));
+                }
+            }
+        }
+        let Some((_, s, z)) = best else {
+            break;
+        };
+        sides[s] = Some(z);
+    }
+    sides
+}
+
+/// The zones on the two sides of a door from geometry alone.
+pub fn geometric_door_zones(floor: &Floor, door: usize) -> [Option<usize>; 2] {
     let d = &floor.doors[door];
     let Some(f) = floor.door_frame(door) else {
         // No passage ring: the two zones nearest to the centre within the probe distance.

@@ -515,6 +515,12 @@ fn measure(
     (length, travel, turn_deg / rotation_deg_s.max(1e-9))
 }
 
+/// Nodes whose way from start to goal in the graph is at most this factor of the shortest
+/// (plus [`NEAR_SLACK_M`]) open their zones and doors to a route's grid search.
+pub const NEAR_FACTOR: f64 = 1.5;
+/// See [`NEAR_FACTOR`], metres.
+pub const NEAR_SLACK_M: f64 = 5.0;
+
 /// A resolved place: storey, its topology node (zone or door) if any, and its cell.
 #[derive(Debug, Clone, Copy)]
 struct Spot {
@@ -634,7 +640,7 @@ impl Navigator<'_> {
     }
 
     /// The cost in metres-equivalent of the connection edge between landings `a` and `b`.
-    pub(crate) fn connection_cost(&self, a: usize, b: usize) -> f64 {
+    pub fn connection_cost(&self, a: usize, b: usize) -> f64 {
         let (na, nb) = (&self.topology.nodes[a], &self.topology.nodes[b]);
         let c = &self.building.connections[na.index];
         let dz =
@@ -715,15 +721,22 @@ impl Navigator<'_> {
         let t = &self.topology;
         // The node sequence from the graph (start and goal nodes may be absent for points
         // outside every zone: then a single unguided leg).
+        // Besides the graph's shortest node path, every node on a way nearly as short may be
+        // used: the graph measures a zone from its interior point, a poor guide in large or
+        // long zones, so the grid search gets the zones of all the plausible ways.
+        let mut near = vec![false; t.nodes.len()];
         let nodes: Vec<usize> = match (a.node, b.node) {
             (Some(na), Some(nb)) => {
-                let (dist, prev) = t.search(
-                    &[na],
-                    |n| (self.open[n] || n == na || n == nb).then_some(0.0),
-                    |x, y| self.connection_cost(x, y),
-                );
+                let node_cost = |n: usize| (self.open[n] || n == na || n == nb).then_some(0.0);
+                let connection = |x, y| self.connection_cost(x, y);
+                let (dist, prev) = t.search(&[na], node_cost, connection);
                 if !dist[nb].is_finite() {
                     return Err(self.unreachable(from, to, &[na], Some(nb)));
+                }
+                let (back, _) = t.search(&[nb], node_cost, connection);
+                let bound = dist[nb] * NEAR_FACTOR + NEAR_SLACK_M;
+                for (n, ok) in near.iter_mut().enumerate() {
+                    *ok = dist[n] + back[n] <= bound;
                 }
                 Topology::path_to(&prev, nb)
             }
@@ -785,7 +798,12 @@ impl Navigator<'_> {
             } else {
                 landing_cell(*leg_nodes.last().unwrap())?
             };
-            let leg = self.leg(floor, start, goal, leg_nodes).ok_or_else(|| {
+            let mut guide = leg_nodes.clone();
+            guide.extend(
+                (0..t.nodes.len())
+                    .filter(|&n| near[n] && t.nodes[n].floor == floor && !leg_nodes.contains(&n)),
+            );
+            let leg = self.leg(floor, start, goal, &guide).ok_or_else(|| {
                 self.unreachable(from, to, &a.node.into_iter().collect::<Vec<_>>(), b.node)
             })?;
             legs.push(leg);

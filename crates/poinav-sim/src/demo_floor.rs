@@ -115,6 +115,7 @@ pub fn demo_floor(
                         a.min_clearance_width_m
                     }),
                 roles: roles(c),
+                spaces: None,
             });
         }
         gaps.sort_by(|a, b| a.0.total_cmp(&b.0));

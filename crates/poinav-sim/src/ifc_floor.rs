@@ -1,7 +1,9 @@
 //! IFC storey -> `poinav_nav::Floor`: a storey floor plan (`poinav-geom`) with the roles,
-//! statuses and coordination of a POI classification, for simulating real buildings.
+//! statuses and coordination of a POI classification, and the spaces each door bounds from
+//! `IfcRelSpaceBoundary` where the model has them, for simulating and navigating real
+//! buildings.
 
-use std::collections::HashMap;
+use std::collections::{BTreeMap, HashMap};
 
 use poinav_geom::{
     floor_plans, floor_plans_with_meshes, mesh_model, FloorPlan, PlanItemKind, PlanOptions,
@@ -18,7 +20,9 @@ pub fn converter() -> impl Fn(&Model, &Classification, Option<&str>) -> Result<F
     |model, classification, storey| {
         let plans = floor_plans(model, &PlanOptions::default());
         let plan = pick(&plans, storey)?;
-        Ok(floor_from_plan(plan, classification))
+        let mut floor = floor_from_plan(plan, classification);
+        apply_space_boundaries(&mut floor, &door_space_boundaries(model));
+        Ok(floor)
     }
 }
 
@@ -140,9 +144,45 @@ pub fn floor_from_plan(plan: &FloorPlan, classification: &Classification) -> Flo
             status: access.map_or(AccessibilityStatus::PendingValidation, |a| a.status),
             min_clearance_width_m: access.map_or(required, |a| a.min_clearance_width_m),
             roles: roles(c),
+            spaces: None,
         });
     }
     floor
+}
+
+/// Per door GlobalId, the GlobalIds of the spaces its `IfcRelSpaceBoundary`s bound (sorted,
+/// each once); doors without space boundaries are absent.
+pub fn door_space_boundaries(model: &Model) -> BTreeMap<String, Vec<String>> {
+    let mut out: BTreeMap<String, Vec<String>> = BTreeMap::new();
+    for rel in model.instances_of("IfcRelSpaceBoundary") {
+        let (Some(element), Some(space)) = (
+            rel.get_ref("RelatedBuildingElement"),
+            rel.get_ref("RelatingSpace"),
+        ) else {
+            continue;
+        };
+        if !element.is_a("IfcDoor") || !space.is_a("IfcSpace") {
+            continue;
+        }
+        let (Some(door), Some(space)) = (element.global_id(), space.global_id()) else {
+            continue;
+        };
+        let spaces = out.entry(door).or_default();
+        if let Err(at) = spaces.binary_search(&space) {
+            spaces.insert(at, space);
+        }
+    }
+    out
+}
+
+/// Gives every door of `floor` found in `boundaries` (from [`door_space_boundaries`]) its
+/// spaces, so that the navigation graph joins the spaces the model says it joins.
+pub fn apply_space_boundaries(floor: &mut Floor, boundaries: &BTreeMap<String, Vec<String>>) {
+    for d in &mut floor.doors {
+        if let Some(spaces) = boundaries.get(&d.id) {
+            d.spaces = Some(spaces.clone());
+        }
+    }
 }
 
 /// Every storey of `model` as a floor (storeys without doors or spaces included), for
@@ -159,9 +199,14 @@ pub fn building_and_dropped(
 ) -> (poinav_nav::Building, Vec<Dropped>) {
     let meshes = mesh_model(model);
     let plans = floor_plans_with_meshes(model, &meshes, &PlanOptions::default());
+    let boundaries = door_space_boundaries(model);
     let floors: Vec<Floor> = plans
         .iter()
-        .map(|p| floor_from_plan(p, classification))
+        .map(|p| {
+            let mut floor = floor_from_plan(p, classification);
+            apply_space_boundaries(&mut floor, &boundaries);
+            floor
+        })
         .collect();
     let clearance = (classification.profile.width_m / 2.0).max(0.25);
     let vertical = vertical_connections(model, &meshes, &floors, clearance);

@@ -45,6 +45,7 @@ fn floor(w: f64, t: f64) -> Floor {
             status: AccessibilityStatus::PendingValidation,
             min_clearance_width_m: 0.9,
             roles: vec![Role::Transition],
+            spaces: None,
         }],
         zones: vec![
             FloorZone {

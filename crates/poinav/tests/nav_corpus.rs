@@ -1,6 +1,7 @@
 //! Navigation grids of every corpus building: every interior door (a space on both sides) that
 //! is FULL_ACCESS for the paper's robot has a free path through it in the inflated occupancy
-//! grid, and no BLOCKED door is open. Entrances and doors of models without spaces lead into
+//! grid, and no BLOCKED door is open; doors with IfcRelSpaceBoundary join exactly the spaces
+//! those name (FZK-Haus's front door: the hall and the outside). Entrances and doors of models without spaces lead into
 //! unmapped (unknown) cells, so they cannot be crossed in the grid: they are counted, not
 //! checked (see the issue notes).
 
@@ -9,14 +10,6 @@ mod common;
 use poinav_ifc::Model;
 use poinav_nav::{NavOptions, Navigator};
 use poinav_poi::{classify, AccessibilityStatus, RobotProfile, RuleSet};
-
-/// Doors this test knows to fail, with the reason (tracked in issue 5's notes): the front door
-/// of FZK-Haus opens from the hall to the outside, but the passage frame's sides find the
-/// kitchen and the office (both within 0.5 m of the door's corner), so it counts as interior.
-const KNOWN: &[(&str, &str)] = &[(
-    "2jTRqchjf7oB0yhQ6462T0",
-    "entrance whose sides are misread as two rooms",
-)];
 
 #[test]
 fn full_access_doors_are_open_and_blocked_doors_closed_in_every_corpus_grid() {
@@ -32,17 +25,49 @@ fn full_access_doors_are_open_and_blocked_doors_closed_in_every_corpus_grid() {
             continue;
         }
         let nav = Navigator::new(&building, &profile, &NavOptions::default()).unwrap();
-        let (mut full, mut blocked, mut unmapped) = (0, 0, 0);
+        let (mut full, mut blocked, mut unmapped, mut by_boundaries) = (0, 0, 0, 0);
         for sides in &nav.topology.doors {
             let node = &nav.topology.nodes[sides.node];
             let label = format!("{name}: door {} {:?}", node.element, node.name);
+            // Doors with IfcRelSpaceBoundary: the sides are those spaces (one: an entrance).
+            let floor = &building.floors[sides.floor];
+            if let Some(spaces) = &floor.doors[sides.door].spaces {
+                let present = spaces
+                    .iter()
+                    .filter(|s| floor.zones.iter().any(|z| &z.id == *s))
+                    .count();
+                if present == spaces.len() {
+                    by_boundaries += 1;
+                    let ids: Vec<&str> = sides
+                        .zones
+                        .iter()
+                        .flatten()
+                        .map(|&z| floor.zones[z].id.as_str())
+                        .collect();
+                    if ids.len() != spaces.len().min(2)
+                        || ids.iter().any(|id| !spaces.iter().any(|s| s == id))
+                        || ids.first() == ids.get(1)
+                    {
+                        problems.push(format!(
+                            "{label}: sides {ids:?}, space boundaries {spaces:?}"
+                        ));
+                    }
+                }
+            }
+            if node.element == "2jTRqchjf7oB0yhQ6462T0" {
+                // FZK-Haus's front door: from the hall (Flur, space "1") to the outside.
+                let mut names: Vec<Option<&str>> = sides
+                    .zones
+                    .iter()
+                    .map(|z| z.map(|z| floor.zones[z].name.as_deref().unwrap_or("?")))
+                    .collect();
+                names.sort();
+                assert_eq!(names, [None, Some("1")], "{label}");
+                assert!(nav.open[node.id], "{label}: {}", nav.closed_reason(node.id));
+            }
             let interior = sides.zones.iter().all(Option::is_some);
             match nav.status[node.id].0 {
-                AccessibilityStatus::FullAccess
-                    if !interior || KNOWN.iter().any(|k| k.0 == node.element) =>
-                {
-                    unmapped += 1
-                }
+                AccessibilityStatus::FullAccess if !interior => unmapped += 1,
                 AccessibilityStatus::FullAccess => {
                     full += 1;
                     if !nav.grid_passable[node.id] {
@@ -65,7 +90,7 @@ fn full_access_doors_are_open_and_blocked_doors_closed_in_every_corpus_grid() {
                 _ => {}
             }
         }
-        report.push(format!("{name}: {full} interior FULL_ACCESS doors open, {blocked} BLOCKED closed, {unmapped} entrances or unmapped sides"));
+        report.push(format!("{name}: {full} interior FULL_ACCESS doors open, {blocked} BLOCKED closed, {unmapped} entrances or unmapped sides, {by_boundaries} doors' sides from space boundaries"));
     }
     assert!(
         problems.is_empty(),

@@ -48,6 +48,7 @@ pub fn door(id: &str, name: &str, ring: Vec<DVec2>, clear_width_m: f64) -> Floor
         status,
         min_clearance_width_m: profile.min_clearance_width(),
         roles,
+        spaces: None,
     }
 }
 
