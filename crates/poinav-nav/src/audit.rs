@@ -153,6 +153,8 @@ fn status_index(s: AccessibilityStatus) -> usize {
 pub struct AuditReport {
     /// Storey names.
     pub floors: Vec<String>,
+    /// What limits the audit ([`Building::diagnostics`]: storeys without spaces).
+    pub warnings: Vec<String>,
     /// Per profile, in the order given.
     pub profiles: Vec<ProfileAudit>,
 }
@@ -170,6 +172,7 @@ pub fn audit(
     }
     Ok(AuditReport {
         floors: building.floors.iter().map(|f| f.name.clone()).collect(),
+        warnings: building.diagnostics(),
         profiles: out,
     })
 }
@@ -230,6 +233,34 @@ pub fn audit_profile(nav: &Navigator<'_>, start: Option<&str>) -> Result<Profile
 
     // Where reachability starts.
     let (starts, start_labels): (Vec<usize>, Vec<String>) = match start {
+        Some(s)
+            if matches!(
+                s.parse::<Place>(),
+                Ok(Place {
+                    target: Target::Outside,
+                    ..
+                })
+            ) =>
+        {
+            let floor = match s.parse::<Place>().ok().and_then(|p| p.floor) {
+                Some(f) => Some(
+                    b.floor_index(&f)
+                        .ok_or_else(|| NavError::NotFound(format!("no storey named `{f}`")))?,
+                ),
+                None => None,
+            };
+            let entrances: Vec<usize> = t
+                .doors
+                .iter()
+                .filter(|d| d.exterior() && floor.is_none_or(|f| f == d.floor))
+                .map(|d| d.node)
+                .collect();
+            let labels = entrances
+                .iter()
+                .map(|&n| t.nodes[n].label().to_string())
+                .collect();
+            (entrances, labels)
+        }
         Some(s) => {
             let place: Place = s.parse().map_err(NavError::Invalid)?;
             let Target::Zone(name) = &place.target else {
@@ -273,9 +304,41 @@ pub fn audit_profile(nav: &Navigator<'_>, start: Option<&str>) -> Result<Profile
     for (fi, f) in b.floors.iter().enumerate() {
         for (k, z) in f.zones.iter().enumerate() {
             let node = t.zone_nodes[fi][k];
+            let label = t.nodes[node].label().to_string();
+            // A space that is itself a vertical connection (a lift shaft) is entered at the
+            // connection's landings, not through doors of its own.
+            if let Some(ci) = b.connections.iter().position(|c| c.id == z.id) {
+                let c = &b.connections[ci];
+                let landings = t.landing_nodes.get(ci).map_or(&[][..], |l| &l[..]);
+                let reachable = landings.iter().any(|&n| dist[n].is_finite());
+                let restricted_only =
+                    reachable && !landings.iter().any(|&n| dist_full[n].is_finite());
+                let (status, why) = c.status(&nav.profile);
+                spaces.push(SpaceAudit {
+                    floor: fi,
+                    floor_name: f.name.clone(),
+                    id: z.id.clone(),
+                    name: Some(label),
+                    reachable,
+                    restricted_only,
+                    blocked_by: Vec::new(),
+                    reason: format!(
+                        "the {} {} itself, entered at its landings ({}); {}: {why}",
+                        c.kind.label(),
+                        c.label(),
+                        if reachable {
+                            "reachable"
+                        } else {
+                            "not reachable"
+                        },
+                        status.label()
+                    ),
+                    roles: z.roles.clone(),
+                });
+                continue;
+            }
             let reachable = dist[node].is_finite();
             let restricted_only = reachable && !dist_full[node].is_finite();
-            let label = t.nodes[node].label().to_string();
             let (blocked_by, reason) = if reachable {
                 let r = if restricted_only {
                     "reachable only through RESTRICTED doors".to_string()
@@ -286,7 +349,8 @@ pub fn audit_profile(nav: &Navigator<'_>, start: Option<&str>) -> Result<Profile
             } else if starts.is_empty() {
                 (
                     Vec::new(),
-                    "no entrance (exterior door) found: name a start space".to_string(),
+                    "no entrance (a door with a space on one side only) found: name a start space"
+                        .to_string(),
                 )
             } else {
                 match nav.blocking(&starts, node) {
@@ -468,6 +532,13 @@ figure{margin:1em 0}svg{max-width:100%;height:auto;border:1px solid #ddd}\n\
             .collect::<Vec<_>>()
             .join(", "))
     );
+    if !report.warnings.is_empty() {
+        h.push_str("<ul class=\"warnings\">\n");
+        for w in &report.warnings {
+            let _ = writeln!(h, "<li>{}</li>", esc(w));
+        }
+        h.push_str("</ul>\n");
+    }
     for (pi, p) in report.profiles.iter().enumerate() {
         let [full, restricted, blocked, pending] = p.door_counts();
         let (reach, unreach) = p.space_counts();
@@ -489,6 +560,17 @@ figure{margin:1em 0}svg{max-width:100%;height:auto;border:1px solid #ddd}\n\
             h,
             "<p>Doors: {full} FULL_ACCESS, {restricted} RESTRICTED, {blocked} BLOCKED, {pending} PENDING_VALIDATION. Spaces: {reach} reachable, {unreach} unreachable.</p>"
         );
+        for c in &p.transitions {
+            if c.status == AccessibilityStatus::PendingValidation {
+                let _ = writeln!(
+                    h,
+                    "<p class=\"PENDING_VALIDATION\">The {} {} is PENDING_VALIDATION: {}.</p>",
+                    c.kind,
+                    esc(c.name.as_deref().unwrap_or(&c.id)),
+                    esc(&c.reason)
+                );
+            }
+        }
         for (dp, fi, text) in drawings {
             if *dp == pi {
                 let _ = writeln!(

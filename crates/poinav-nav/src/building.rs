@@ -30,6 +30,24 @@ impl Building {
     pub fn floor_index(&self, name: &str) -> Option<usize> {
         self.floors.iter().position(|f| f.name == name)
     }
+
+    /// What limits navigation on this building, one sentence each: storeys with doors but no
+    /// spaces (their doors join nothing, so they have no entrance and no room to route to).
+    pub fn diagnostics(&self) -> Vec<String> {
+        self.floors
+            .iter()
+            .filter(|f| f.zones.is_empty() && !f.doors.is_empty())
+            .map(|f| {
+                format!(
+                    "storey `{}` has {} door{} but no spaces (IfcSpace): its doors join no rooms and lead nowhere outside, so it has no entrance and nothing to route to by name; routes there need points (`x,y@{}`), and only the free space enclosed by walls and doors is mapped",
+                    f.name,
+                    f.doors.len(),
+                    if f.doors.len() == 1 { "" } else { "s" },
+                    f.name
+                )
+            })
+            .collect()
+    }
 }
 
 /// What a vertical connection is.
@@ -148,9 +166,12 @@ impl VerticalConnection {
         }
         let (width_status, width_reason) = match self.clear_width_m {
             Some(w) => width_status(w, profile),
-            None if self.kind == ConnectionKind::Lift => {
-                (PendingValidation, "lift door width unknown".into())
-            }
+            None if self.kind == ConnectionKind::Lift => (
+                PendingValidation,
+                "door width unknown (no door found at the lift): measure it on site or model \
+                 the lift's door"
+                    .into(),
+            ),
             None => return (kind_status, kind_reason),
         };
         let worst = worse(kind_status, width_status);

@@ -1,6 +1,7 @@
 //! Occupancy grids of one storey: exact polygon fill of the floor's rings at a fixed
 //! resolution, doors carved open or closed by their AccessibilityStatus for a profile, free
-//! space inside the building and unknown outside it, and inflation by an exact Euclidean
+//! space inside the building and unknown outside it (but for a free apron in front of each open
+//! entrance, [`GridOptions::entrance_apron_m`]), and inflation by an exact Euclidean
 //! distance transform into a grid a robot's centre can plan on ([`NavGrid`]).
 //!
 //! Cell `(col, row)` covers `origin + [col, col + 1) x [row, row + 1)` cells of `resolution_m`;
@@ -62,6 +63,11 @@ pub struct GridOptions {
     /// Cells enclosed by walls and doors but in no zone are free (default); otherwise only
     /// zones and open doors are free.
     pub fill_enclosed: bool,
+    /// Depth in metres of the entrance apron: the unknown cells outside an open exterior door
+    /// (a door with a zone on one side only), as wide as its passage and this deep, are free,
+    /// so robots can plan to and from the entrance (default 1.0; 0 leaves the outside wholly
+    /// unknown). The rest of the outside stays unknown.
+    pub entrance_apron_m: f64,
 }
 
 impl Default for GridOptions {
@@ -73,6 +79,7 @@ impl Default for GridOptions {
             pending_doors_open: true,
             doors_by_status: true,
             fill_enclosed: true,
+            entrance_apron_m: 1.0,
         }
     }
 }
@@ -162,6 +169,43 @@ fn paint(
     }
 }
 
+/// The entrance aprons of `floor` ([`GridOptions::entrance_apron_m`]): in front of every
+/// exterior door (a zone on one side only) that is open for `profile`, outside, a rectangle as
+/// wide as its passage and as deep as the apron.
+pub fn entrance_aprons(
+    floor: &Floor,
+    profile: &RobotProfile,
+    options: &GridOptions,
+) -> Vec<Vec<DVec2>> {
+    let apron = options.entrance_apron_m;
+    if !(apron.is_finite() && apron > 0.0) {
+        return Vec::new();
+    }
+    let mut out = Vec::new();
+    for (k, d) in floor.doors.iter().enumerate() {
+        if options.doors_by_status
+            && !passable(door_status(d, profile).0, options.pending_doors_open)
+        {
+            continue;
+        }
+        let Some(f) = floor.door_frame(k) else {
+            continue;
+        };
+        let side = match crate::graph::door_zones(floor, k) {
+            [None, Some(_)] => -1.0,
+            [Some(_), None] => 1.0,
+            _ => continue,
+        };
+        let front = PassageFrame {
+            center: f.center + f.normal * side * (f.half_depth + apron / 2.0),
+            half_depth: apron / 2.0,
+            ..f
+        };
+        out.push(front.rectangle(f.half_width, apron / 2.0));
+    }
+    out
+}
+
 impl OccupancyGrid {
     /// Rasterises `floor` for `profile`: zones (and, with `fill_enclosed`, space enclosed by
     /// walls and doors) free, walls, stairs and ramps drawn as obstacles, and furniture
@@ -179,8 +223,11 @@ impl OccupancyGrid {
                 "grid resolution must be a positive number of metres, not {res}"
             )));
         }
-        // An empty storey is a patch of unknown cells.
-        let (lo, hi) = floor.bounds().unwrap_or((DVec2::ZERO, DVec2::ZERO));
+        // An empty storey is a patch of unknown cells. The entrance aprons are inside.
+        let (mut lo, mut hi) = floor.bounds().unwrap_or((DVec2::ZERO, DVec2::ZERO));
+        for p in entrance_aprons(floor, profile, options).iter().flatten() {
+            (lo, hi) = (lo.min(*p), hi.max(*p));
+        }
         let pad = options.padding_m.max(0.0);
         // Snap the origin to the resolution so that coordinates on multiples of it fall on cell
         // edges.
@@ -334,6 +381,15 @@ impl OccupancyGrid {
                 reason,
                 open,
                 frame,
+            });
+        }
+
+        // Entrance aprons: free cells in front of open exterior doors, outside.
+        for ring in entrance_aprons(floor, profile, options) {
+            paint(width, height, origin, res, &ring, |i| {
+                if cells[i] == CellState::Unknown {
+                    cells[i] = CellState::Free;
+                }
             });
         }
 

@@ -2,8 +2,9 @@
 //!
 //! - `map.yaml` + `map.pgm` for nav2_map_server (trinary: 0 occupied, 254 free, 205 unknown,
 //!   first row = largest y, thresholds 0.65 / 0.196, origin = the lower-left pixel, yaw 0). Not
-//!   inflated (Nav2's inflation layer does that); BLOCKED doors are drawn closed. The free
-//!   threshold is 0.196, not Nav2's default 0.25, under which 205 would load as free
+//!   inflated (Nav2's inflation layer does that); BLOCKED doors are drawn closed; outside the
+//!   building unknown but for the free apron in front of each open entrance
+//!   ([`crate::GridOptions::entrance_apron_m`]). The free threshold is 0.196, not Nav2's default 0.25, under which 205 would load as free
 //!   ([`Nav2Options::free_thresh`]).
 //! - `keepout_mask.yaml` + `.pgm`: mask value 100 (black) on BLOCKED doors and on stairs or
 //!   ramps the profile cannot use, free elsewhere (trinary).
@@ -647,6 +648,7 @@ fn readme(nav: &Navigator<'_>, options: &Nav2Options, storeys: &[StoreyBundle]) 
         .first()
         .map_or(0.05, |f| f.grid.occupancy.resolution_m);
     let lethal = nav.floors.first().map_or(0.0, |f| f.grid.lethal_radius_m);
+    let apron = nav.options.grid.entrance_apron_m;
     let _ = write!(
         s,
         "
@@ -656,8 +658,10 @@ fn readme(nav: &Navigator<'_>, options: &Nav2Options, storeys: &[StoreyBundle]) 
   0 occupied, 254 free, 205 unknown; thresholds 0.65 / {free}; the top row is the largest y;
   origin is the lower-left pixel, yaw 0; a free threshold of 0.25, Nav2's default, would load
   the unknown grey 205 as free). Walls, furniture and closed (BLOCKED) doors are occupied, the
-  inside of the building free, the outside unknown. It is not inflated: configure Nav2's
-  inflation layer with `inflation_radius` = {infl:.3} m (the robot's circumscribed radius plus its
+  inside of the building free, the outside unknown, except an entrance apron: a free strip
+  {apron} m deep and as wide as the door in front of each open entrance (a door with a space
+  on one side only), so a robot can be sent to or from the entrance. It is not inflated:
+  configure Nav2's inflation layer with `inflation_radius` = {infl:.3} m (the robot's circumscribed radius plus its
   clearance margin) and a footprint or `robot_radius` of your robot; poinav planned with a lethal
   radius of {lethal:.3} m (half the robot's width).
 - `keepout_mask.yaml`, `keepout_mask.pgm`: keepout filter mask, black (100) = never enter:

@@ -5,7 +5,8 @@
 //! simplified by line of sight (never into a costlier straight line) and reported with its
 //! length, expected time (travel at role speeds plus turning at the profile's rotation speed
 //! plus vertical connections) and the doors it passes. An unreachable goal names the doors or
-//! transitions that block it.
+//! transitions that block it. A route may start or end `outside`: on the entrance apron in
+//! front of the best open entrance.
 
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
@@ -28,6 +29,9 @@ pub enum Target {
     Zone(String),
     /// A point, world metres.
     Point(DVec2),
+    /// Outside the building: in front of an open entrance (an exterior door, on its entrance
+    /// apron), the one that gives the shortest way to the other end of the route.
+    Outside,
 }
 
 /// A target on a storey (`None`: any storey for zones, the first for points).
@@ -60,7 +64,8 @@ impl Place {
 impl FromStr for Place {
     type Err = String;
 
-    /// `Room 1`, `Room 1@Level 2`, `3.5,2.0` or `3.5,2.0@Level 2`.
+    /// `Room 1`, `Room 1@Level 2`, `3.5,2.0`, `3.5,2.0@Level 2`, `outside` or
+    /// `outside@Level 1`.
     fn from_str(s: &str) -> Result<Place, String> {
         let (what, floor) = match s.rsplit_once('@') {
             Some((w, f)) => (w.trim(), Some(f.trim().to_string())),
@@ -72,6 +77,7 @@ impl FromStr for Place {
         let coords: Vec<Option<f64>> = what.split(',').map(|p| p.trim().parse().ok()).collect();
         let target = match coords.as_slice() {
             [Some(x), Some(y)] => Target::Point(DVec2::new(*x, *y)),
+            _ if what.eq_ignore_ascii_case("outside") => Target::Outside,
             _ => Target::Zone(what.to_string()),
         };
         Ok(Place { floor, target })
@@ -83,6 +89,7 @@ impl fmt::Display for Place {
         match &self.target {
             Target::Zone(z) => f.write_str(z)?,
             Target::Point(p) => write!(f, "({:.2}, {:.2})", p.x, p.y)?,
+            Target::Outside => f.write_str("outside")?,
         }
         if let Some(fl) = &self.floor {
             write!(f, "@{fl}")?;
@@ -581,11 +588,24 @@ impl Navigator<'_> {
                     .topology
                     .zone_node(self.building, name, floor)
                     .ok_or_else(|| {
+                        let spaces: usize = self
+                            .building
+                            .floors
+                            .iter()
+                            .enumerate()
+                            .filter(|(i, _)| floor.is_none_or(|f| f == *i))
+                            .map(|(_, f)| f.zones.len())
+                            .sum();
                         NavError::NotFound(format!(
-                            "no space named `{name}`{}",
+                            "no space named `{name}`{}{}",
                             match &place.floor {
                                 Some(f) => format!(" on storey `{f}`"),
                                 None => String::new(),
+                            },
+                            if spaces == 0 {
+                                " (the model has no spaces there: give a point, `x,y@Storey`)"
+                            } else {
+                                ""
                             }
                         ))
                     })?;
@@ -602,6 +622,9 @@ impl Navigator<'_> {
                     cell,
                 })
             }
+            Target::Outside => Err(NavError::Invalid(
+                "outside is a place only at one end of a route".into(),
+            )),
             Target::Point(p) => {
                 let fi = floor.unwrap_or(0);
                 let grid = &self
@@ -649,8 +672,8 @@ impl Navigator<'_> {
     }
 
     /// The doors and transitions blocking the way from `starts` to `goal`: the way through the
-    /// fewest closed nodes, and those nodes on it. Empty when no door or connection joins them
-    /// at all.
+    /// fewest closed nodes, and those nodes on it (a stair, ramp or lift once, whatever the
+    /// number of its landings on the way). Empty when no door or connection joins them at all.
     pub fn blocking(&self, starts: &[usize], goal: usize) -> Option<Vec<Blocking>> {
         const PENALTY: f64 = 1e7;
         let t = &self.topology;
@@ -663,9 +686,17 @@ impl Navigator<'_> {
             return None;
         }
         let path = Topology::path_to(&prev, goal);
+        // A stair, ramp or lift is one transition, named once (not once per landing).
+        let mut seen: Vec<(NodeKind, &str)> = Vec::new();
         Some(
             path.iter()
                 .filter(|&&n| !self.open[n])
+                .filter(|&&n| {
+                    let key = (t.nodes[n].kind, t.nodes[n].element.as_str());
+                    let new = !seen.contains(&key);
+                    seen.push(key);
+                    new
+                })
                 .map(|&n| {
                     let node = &t.nodes[n];
                     Blocking {
@@ -714,10 +745,120 @@ impl Navigator<'_> {
         }))
     }
 
+    /// Where a robot stands outside the building before entering by an open entrance on
+    /// storey `floor` (any storey when `None`): on the entrance apron, in front of the entrance
+    /// nearest through the graph to `other` (the route's other end).
+    fn entrance_spot(&self, floor: Option<&str>, other: &Spot) -> Result<Spot, NavError> {
+        let t = &self.topology;
+        let apron = self.options.grid.entrance_apron_m;
+        let exterior = self.exterior_doors(floor)?;
+        let dist = other.node.map(|n| {
+            t.search(
+                &[n],
+                |m| (self.open[m] || m == n).then_some(0.0),
+                |x, y| self.connection_cost(x, y),
+            )
+            .0
+        });
+        let mut best: Option<(f64, Spot)> = None;
+        let mut closed = Vec::new();
+        for d in exterior {
+            let grid = &self.floors[d.floor].grid;
+            let frame = grid.occupancy.doors[d.door].frame;
+            let (Some(f), Some(side)) = (frame, d.outside_side()) else {
+                continue;
+            };
+            if !self.open[d.node] {
+                closed.push(format!(
+                    "{} ({})",
+                    t.nodes[d.node].label(),
+                    self.closed_reason(d.node)
+                ));
+                continue;
+            }
+            let p = f.center + f.normal * side * (f.half_depth + apron / 2.0);
+            let reach = apron / 2.0 + grid.occupancy.resolution_m;
+            let Some(cell) = grid.nearest_traversable(p, reach) else {
+                continue;
+            };
+            let score = match &dist {
+                Some(dist) => dist[d.node] + t.nodes[d.node].position().distance(p),
+                None if d.floor == other.floor => grid
+                    .occupancy
+                    .center(other.cell)
+                    .distance(grid.occupancy.center(cell)),
+                None => f64::INFINITY,
+            };
+            let spot = Spot {
+                floor: d.floor,
+                node: Some(d.node),
+                cell,
+            };
+            if best.as_ref().is_none_or(|(b, _)| score < *b) {
+                best = Some((score, spot));
+            }
+        }
+        best.map(|(_, s)| s).ok_or_else(|| {
+            NavError::NotFound(if closed.is_empty() {
+                "no entrance has room for the robot outside it".to_string()
+            } else {
+                format!(
+                    "no entrance is open for {}: {}",
+                    self.profile.name,
+                    closed.join(", ")
+                )
+            })
+        })
+    }
+
+    /// The exterior doors (entrances) of storey `floor` (any when `None`); an error when there
+    /// is none.
+    fn exterior_doors(
+        &self,
+        floor: Option<&str>,
+    ) -> Result<Vec<&crate::graph::DoorSides>, NavError> {
+        let floor = self.floor_index(floor)?;
+        let exterior: Vec<&crate::graph::DoorSides> = self
+            .topology
+            .doors
+            .iter()
+            .filter(|d| d.exterior() && floor.is_none_or(|f| f == d.floor))
+            .collect();
+        if exterior.is_empty() {
+            let spaces: usize = self.building.floors.iter().map(|f| f.zones.len()).sum();
+            return Err(NavError::NotFound(if spaces == 0 {
+                "the building has no entrance: it has no spaces, so no door leads from a space to the outside".into()
+            } else {
+                "the building has no entrance (a door with a space on one side only)".into()
+            }));
+        }
+        Ok(exterior)
+    }
+
     /// A route from `from` to `to`.
     pub fn route(&self, from: &Place, to: &Place) -> Result<Route, NavError> {
-        let a = self.resolve(from)?;
-        let b = self.resolve(to)?;
+        for p in [from, to] {
+            if p.target == Target::Outside {
+                self.exterior_doors(p.floor.as_deref())?;
+            }
+        }
+        let (a, b) = match (&from.target, &to.target) {
+            (Target::Outside, Target::Outside) => {
+                return Err(NavError::Invalid(
+                    "a route goes from outside into the building or out of it, not from outside to outside".into(),
+                ))
+            }
+            (Target::Outside, _) => {
+                let b = self.resolve(to)?;
+                (self.entrance_spot(from.floor.as_deref(), &b)?, b)
+            }
+            (_, Target::Outside) => {
+                let a = self.resolve(from)?;
+                let b = self.entrance_spot(to.floor.as_deref(), &a)?;
+                (a, b)
+            }
+            _ => (self.resolve(from)?, self.resolve(to)?),
+        };
         let t = &self.topology;
         // The node sequence from the graph (start and goal nodes may be absent for points
         // outside every zone: then a single unguided leg).

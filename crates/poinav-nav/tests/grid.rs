@@ -274,3 +274,75 @@ fn narrowest_passable_door() {
     println!("narrowest passable door (cm) every 15 degrees: {narrowest:?}");
     assert!(narrowest.iter().all(|cm| *cm <= 78), "{narrowest:?}");
 }
+
+#[test]
+fn an_open_entrance_has_a_free_apron_outside_and_routes_start_there() {
+    use poinav_nav::{NavOptions, Navigator, Place};
+    use support::{door, rect, room, wall};
+    // A 4 x 4 m room inside 0.2 m walls, a 1.0 m entrance in the south wall (y -0.2..0).
+    let floor = Floor {
+        name: "Ground".into(),
+        obstacles: vec![wall(
+            "outer",
+            vec![
+                rect(-0.2, -0.2, 1.5, 0.0),
+                rect(2.5, -0.2, 4.2, 0.0),
+                rect(-0.2, 4.0, 4.2, 4.2),
+                rect(-0.2, 0.0, 0.0, 4.0),
+                rect(4.0, 0.0, 4.2, 4.0),
+            ],
+        )],
+        doors: vec![door("entrance", "Entrance", rect(1.5, -0.2, 2.5, 0.0), 1.0)],
+        zones: vec![room("room", "Room", rect(0.0, 0.0, 4.0, 4.0))],
+        ..Floor::default()
+    };
+    let profile = RobotProfile::paper();
+    let grid = |apron: f64| {
+        poinav_nav::OccupancyGrid::build(
+            &floor,
+            &profile,
+            &GridOptions {
+                entrance_apron_m: apron,
+                ..Default::default()
+            },
+        )
+        .unwrap()
+    };
+    let (with, without) = (grid(1.0), grid(0.0));
+    // 1.0 x 1.0 m of unknown outside cells become free: 400 cells of 0.05 m (the grid grows
+    // to hold the apron).
+    assert_eq!(with.counts()[0] - without.counts()[0], 400);
+    assert!(with.origin.y <= -1.2 - 0.5 && without.origin.y > -1.2);
+    let p = glam::DVec2::new(2.0, -0.6);
+    assert_eq!(with.cells[with.cell_of(p).unwrap()], CellState::Free);
+    assert_eq!(
+        without.cells[without.cell_of(p).unwrap()],
+        CellState::Unknown
+    );
+    // Beside the apron the outside stays unknown.
+    let beside = with.cell_of(glam::DVec2::new(0.5, -0.7)).unwrap();
+    assert_eq!(with.cells[beside], CellState::Unknown);
+
+    let building = Building::single(floor.clone());
+    let nav = Navigator::new(&building, &profile, &NavOptions::default()).unwrap();
+    let route = nav
+        .route(&"outside".parse::<Place>().unwrap(), &Place::zone("Room"))
+        .unwrap();
+    assert_eq!(route.doors[0].name.as_deref(), Some("Entrance"));
+    let start = route.legs[0].polyline[0];
+    assert!(start[1] < -0.2 && start[1] >= -1.2, "{start:?}");
+    // A closed entrance has no apron, and no route comes in from outside.
+    let mut closed = floor.clone();
+    closed.doors[0].clear_width_m = 0.6;
+    closed.doors[0].status = AccessibilityStatus::Blocked;
+    let building = Building::single(closed);
+    let nav = Navigator::new(&building, &profile, &NavOptions::default()).unwrap();
+    let err = nav
+        .route(&"outside".parse::<Place>().unwrap(), &Place::zone("Room"))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("no entrance is open for paper-robot: Entrance (BLOCKED"),
+        "{err}"
+    );
+}

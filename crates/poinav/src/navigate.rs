@@ -70,17 +70,42 @@ fn profile(path: Option<&Path>) -> anyhow::Result<RobotProfile> {
     })
 }
 
-/// The building's storeys as floors, classified for `profile`.
-fn building(file: &Path, profile: &RobotProfile) -> anyhow::Result<Building> {
+/// The building's storeys as floors, classified for `profile`, and warnings: the stairs,
+/// ramps and lifts left out (with why) and what else limits navigation
+/// ([`Building::diagnostics`]).
+fn building(file: &Path, profile: &RobotProfile) -> anyhow::Result<(Building, Vec<String>)> {
     let model = Model::open(file)?;
     let c = classify(&model, &RuleSet::defaults(), profile);
-    Ok(poinav_sim::ifc_floor::building_of(&model, &c))
+    let (building, dropped) = poinav_sim::ifc_floor::building_and_dropped(&model, &c);
+    let mut warnings: Vec<String> = dropped
+        .iter()
+        .map(|d| {
+            let name = match &d.name {
+                Some(n) => format!("{n} ({})", d.id),
+                None => d.id.clone(),
+            };
+            format!(
+                "{} {name} is left out, it connects no storeys: {}",
+                d.kind.label(),
+                d.reason
+            )
+        })
+        .collect();
+    warnings.extend(building.diagnostics());
+    Ok((building, warnings))
+}
+
+fn print_warnings(warnings: &[String]) {
+    for w in warnings {
+        eprintln!("warning: {w}");
+    }
 }
 
 /// Runs `poinav route`.
 pub fn route(args: &RouteArgs) -> anyhow::Result<ExitCode> {
     let profile = profile(args.profile.as_deref())?;
-    let building = building(&args.file, &profile)?;
+    let (building, warnings) = building(&args.file, &profile)?;
+    print_warnings(&warnings);
     let nav = Navigator::new(&building, &profile, &NavOptions::default())?;
     let from: Place = args.from.parse().map_err(anyhow::Error::msg)?;
     let to: Place = args.to.parse().map_err(anyhow::Error::msg)?;
@@ -117,8 +142,9 @@ pub fn audit(args: &AuditArgs) -> anyhow::Result<ExitCode> {
             .collect::<Result<_, _>>()?
     };
     // Statuses come from each profile's own width rule; the floors carry the first profile's roles.
-    let building = building(&args.file, &profiles[0])?;
-    let report = poinav_nav::audit(
+    let (building, warnings) = building(&args.file, &profiles[0])?;
+    print_warnings(&warnings);
+    let mut report = poinav_nav::audit(
         &building,
         &profiles,
         &AuditOptions {
@@ -126,6 +152,12 @@ pub fn audit(args: &AuditArgs) -> anyhow::Result<ExitCode> {
             start: args.start.clone(),
         },
     )?;
+    // The report lists the left-out connections too (diagnostics are in it already).
+    let dropped: Vec<String> = warnings
+        .into_iter()
+        .filter(|w| !report.warnings.contains(w))
+        .collect();
+    report.warnings.splice(0..0, dropped);
     let dir = args
         .output
         .parent()
@@ -147,6 +179,16 @@ pub fn audit(args: &AuditArgs) -> anyhow::Result<ExitCode> {
                 "{}: doors {full} full, {restricted} restricted, {blocked} blocked, {pending} pending; spaces {reachable} reachable, {unreachable} not",
                 p.profile
             );
+            for t in &p.transitions {
+                if t.status == poinav_poi::AccessibilityStatus::PendingValidation {
+                    println!(
+                        "  {} {} is PENDING_VALIDATION: {}",
+                        t.kind,
+                        t.name.as_deref().unwrap_or(&t.id),
+                        t.reason
+                    );
+                }
+            }
         }
         println!(
             "wrote {} and {} more files in {}",
@@ -169,7 +211,8 @@ pub fn audit(args: &AuditArgs) -> anyhow::Result<ExitCode> {
 /// Runs `poinav export nav2`.
 pub fn nav2(args: &Nav2Args) -> anyhow::Result<ExitCode> {
     let profile = profile(args.profile.as_deref())?;
-    let building = building(&args.file, &profile)?;
+    let (building, warnings) = building(&args.file, &profile)?;
+    print_warnings(&warnings);
     let summary =
         poinav_nav::write_bundle(&building, &profile, &Nav2Options::default(), &args.output)?;
     println!(

@@ -1,9 +1,9 @@
-//! Navigation grids of every corpus building: every interior door (a space on both sides) that
-//! is FULL_ACCESS for the paper's robot has a free path through it in the inflated occupancy
-//! grid, and no BLOCKED door is open; doors with IfcRelSpaceBoundary join exactly the spaces
-//! those name (FZK-Haus's front door: the hall and the outside). Entrances and doors of models without spaces lead into
-//! unmapped (unknown) cells, so they cannot be crossed in the grid: they are counted, not
-//! checked (see the issue notes).
+//! Navigation grids of every corpus building: every door with a space on at least one side
+//! (interior doors and entrances, which lead onto a free apron outside) that is FULL_ACCESS
+//! for the paper's robot has a free path through it in the inflated occupancy grid, and no
+//! BLOCKED door is open; doors with IfcRelSpaceBoundary join exactly the spaces those name
+//! (FZK-Haus's front door: the hall and the outside). Doors of models without spaces have no
+//! sides: they are counted, not checked.
 
 mod common;
 
@@ -25,7 +25,8 @@ fn full_access_doors_are_open_and_blocked_doors_closed_in_every_corpus_grid() {
             continue;
         }
         let nav = Navigator::new(&building, &profile, &NavOptions::default()).unwrap();
-        let (mut full, mut blocked, mut unmapped, mut by_boundaries) = (0, 0, 0, 0);
+        let (mut full, mut entrances, mut blocked, mut unmapped, mut by_boundaries) =
+            (0, 0, 0, 0, 0);
         for sides in &nav.topology.doors {
             let node = &nav.topology.nodes[sides.node];
             let label = format!("{name}: door {} {:?}", node.element, node.name);
@@ -65,11 +66,25 @@ fn full_access_doors_are_open_and_blocked_doors_closed_in_every_corpus_grid() {
                 assert_eq!(names, [None, Some("1")], "{label}");
                 assert!(nav.open[node.id], "{label}: {}", nav.closed_reason(node.id));
             }
-            let interior = sides.zones.iter().all(Option::is_some);
+            let mapped = sides.zones.iter().any(Option::is_some);
             match nav.status[node.id].0 {
-                AccessibilityStatus::FullAccess if !interior => unmapped += 1,
+                AccessibilityStatus::FullAccess if !mapped => unmapped += 1,
                 AccessibilityStatus::FullAccess => {
-                    full += 1;
+                    if sides.exterior() {
+                        entrances += 1;
+                        // The robot can stand on the apron outside it.
+                        let grid = &nav.floors[sides.floor].grid;
+                        let outside = sides.outside_side().unwrap();
+                        let on_apron = grid.occupancy.doors[sides.door].frame.and_then(|f| {
+                            let p = f.center + f.normal * outside * (f.half_depth + 0.5);
+                            grid.nearest_traversable(p, 0.55)
+                        });
+                        if on_apron.is_none_or(|i| grid.occupancy.door[i] != u32::MAX) {
+                            problems.push(format!("{label}: no room on the apron outside it"));
+                        }
+                    } else {
+                        full += 1;
+                    }
                     if !nav.grid_passable[node.id] {
                         problems.push(format!(
                             "{label} (sides {:?}) is FULL_ACCESS but closed in the grid: {}",
@@ -90,7 +105,7 @@ fn full_access_doors_are_open_and_blocked_doors_closed_in_every_corpus_grid() {
                 _ => {}
             }
         }
-        report.push(format!("{name}: {full} interior FULL_ACCESS doors open, {blocked} BLOCKED closed, {unmapped} entrances or unmapped sides, {by_boundaries} doors' sides from space boundaries"));
+        report.push(format!("{name}: {full} interior FULL_ACCESS doors open, {blocked} BLOCKED closed, {entrances} FULL_ACCESS entrances open, {unmapped} doors without sides, {by_boundaries} doors' sides from space boundaries"));
     }
     assert!(
         problems.is_empty(),

@@ -215,3 +215,97 @@ fn nav2_bundle_of_office_a_follows_the_map_server_conventions() {
         .count();
     assert!(edges > 100, "{edges} edges");
 }
+
+fn corpus_file(name: &str) -> std::path::PathBuf {
+    common::shared().join("ifc").join(name)
+}
+
+#[test]
+fn routes_start_outside_and_the_cli_warns_of_what_limits_navigation() {
+    let dir = tempfile::tempdir().unwrap();
+    // FZK-Haus: from outside through the front door (its space boundary: the hall, Flur, and
+    // the outside) into the office (Buero, space 2).
+    let fzk = corpus_file("fzk-haus-ifc4.ifc");
+    let (code, out, err) = run(&[
+        OsStr::new("route"),
+        fzk.as_os_str(),
+        OsStr::new("--from"),
+        OsStr::new("outside"),
+        OsStr::new("--to"),
+        OsStr::new("2"),
+        OsStr::new("--json"),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let route: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let doors: Vec<&str> = route["doors"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|d| d["name"].as_str().unwrap())
+        .collect();
+    assert_eq!(doors, ["Haustuer", "Innentuer-3"]);
+    // The apron in front of the door is 1 m deep: the route starts half a metre out.
+    let length = route["length_m"].as_f64().unwrap();
+    assert!((3.0..8.0).contains(&length), "{length}");
+
+    // A model without spaces: a clear warning, and no entrance to start from.
+    let bare = corpus_file("wall-door-column-ifc4x3.ifc");
+    let report = dir.path().join("bare/report.html");
+    let (code, out, err) = run(&[
+        OsStr::new("audit"),
+        bare.as_os_str(),
+        OsStr::new("-o"),
+        report.as_os_str(),
+        OsStr::new("--json"),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        err.contains("warning: storey `L1` has 1 door but no spaces (IfcSpace)"),
+        "{err}"
+    );
+    let audit: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(audit["warnings"].as_array().unwrap().len(), 1, "{audit}");
+    let html = std::fs::read_to_string(&report).unwrap();
+    assert!(html.contains("but no spaces (IfcSpace)"));
+    let (code, _, err) = run(&[
+        OsStr::new("route"),
+        bare.as_os_str(),
+        OsStr::new("--from"),
+        OsStr::new("outside"),
+        OsStr::new("--to"),
+        OsStr::new("0,0"),
+    ]);
+    assert_eq!(code, 1);
+    assert!(
+        err.contains("the building has no entrance: it has no spaces"),
+        "{err}"
+    );
+    let (code, _, err) = run(&[
+        OsStr::new("route"),
+        bare.as_os_str(),
+        OsStr::new("--from"),
+        OsStr::new("Kitchen"),
+        OsStr::new("--to"),
+        OsStr::new("0,0"),
+    ]);
+    assert_eq!(code, 1);
+    assert!(
+        err.contains("no space named `Kitchen` (the model has no spaces there: give a point"),
+        "{err}"
+    );
+
+    // Stairs that connect no storeys are named with the reason, in the report too.
+    let stairs = corpus_file("nested-mapped-item.ifc");
+    let report = dir.path().join("stairs/report.html");
+    let (code, _, err) = run(&[
+        OsStr::new("audit"),
+        stairs.as_os_str(),
+        OsStr::new("-o"),
+        report.as_os_str(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let expected = "stair STAIR | Standard(1) (2Kkkz43YFqUW00000007yI) is left out, it connects no storeys: it rises from storey `acad_architecture_2010_objects` to z = 2.95 m, no other storey's floor";
+    assert!(err.contains(&format!("warning: {expected}")), "{err}");
+    let json = std::fs::read_to_string(dir.path().join("stairs/audit.json")).unwrap();
+    assert!(json.contains(expected), "{json}");
+}

@@ -334,3 +334,67 @@ fn duplex_apartment_routes_are_within_5_percent_of_the_shortest_path() {
 fn fzk_haus_routes_are_within_5_percent_of_the_shortest_path() {
     check("fzk-haus-ifc4.ifc", 3);
 }
+
+/// From outside (the apron in front of the best open entrance) to every space of the
+/// entrance storeys the graph joins to an entrance: a route that enters by an exterior door,
+/// each leg within 5% of the reference shortest path (lengths only).
+#[test]
+fn routes_from_outside_enter_by_an_entrance_within_5_percent() {
+    let profile = RobotProfile::paper();
+    for (file, min_routes) in [
+        ("fzk-haus-ifc4.ifc", 6),
+        ("duplex-apartment.ifc", 8),
+        ("office-a.ifc", 55),
+    ] {
+        let path = common::shared().join("ifc").join(file);
+        let model = Model::open(&path).unwrap();
+        let c = classify(&model, &RuleSet::defaults(), &profile);
+        let building = poinav_sim::ifc_floor::building_of(&model, &c);
+        let nav = Navigator::new(&building, &profile, &length_only()).unwrap();
+        let t = &nav.topology;
+        let entrances: Vec<usize> = t.entrances().into_iter().filter(|&n| nav.open[n]).collect();
+        assert!(!entrances.is_empty(), "{file}");
+        let (dist, _) = t.search(
+            &entrances,
+            |n| nav.open[n].then_some(0.0),
+            |x, y| nav.connection_cost(x, y),
+        );
+        let floor = t.nodes[entrances[0]].floor;
+        let (mut routes, mut worst, mut best): (usize, f64, f64) = (0, 0.0, f64::INFINITY);
+        for (z, zone) in building.floors[floor].zones.iter().enumerate() {
+            if !dist[t.zone_nodes[floor][z]].is_finite()
+                || building.floors[floor].zones[..z]
+                    .iter()
+                    .any(|x| x.id == zone.id)
+            {
+                continue;
+            }
+            let to = place(&building, floor, z);
+            let route = nav
+                .route(&"outside".parse().unwrap(), &to)
+                .unwrap_or_else(|e| panic!("{file}: outside -> {:?}: {e}", zone.name));
+            let first = &route.doors[0];
+            assert!(
+                t.doors
+                    .iter()
+                    .any(|d| d.exterior() && building.floors[d.floor].doors[d.door].id == first.id),
+                "{file}: outside -> {:?} enters by {:?}",
+                zone.name,
+                first.name
+            );
+            for r in leg_ratios(&nav, &route) {
+                (worst, best) = (worst.max(r), best.min(r));
+                assert!(
+                    (0.95..=1.05).contains(&r),
+                    "{file}: outside -> {:?}: ratio {r}",
+                    zone.name
+                );
+            }
+            routes += 1;
+        }
+        println!(
+            "{file}: {routes} routes from outside, leg length / shortest path {best:.4} to {worst:.4}"
+        );
+        assert!(routes >= min_routes, "{file}: {routes}");
+    }
+}

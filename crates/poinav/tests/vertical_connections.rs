@@ -90,10 +90,27 @@ fn office_a_level_2_is_reached_through_the_lift_not_the_stairs() {
         ],
         "two half-turn stairs and the lift shaft 124 (door width unknown)"
     );
+    let lift = &transitions[2];
+    assert!(
+        lift["reason"]
+            .as_str()
+            .unwrap()
+            .contains("door width unknown (no door found at the lift)"),
+        "{lift}"
+    );
     let spaces = profile["spaces"].as_array().unwrap();
     let reachable = spaces.iter().filter(|s| s["reachable"] == true).count();
-    // 59 of 99 without vertical connections: Level 1 only.
-    assert_eq!((reachable, spaces.len()), (98, 99));
+    // 59 of 99 without vertical connections: Level 1 only. The lift's own space 124 is
+    // reached at its landings.
+    assert_eq!((reachable, spaces.len()), (99, 99));
+    let shaft = spaces.iter().find(|s| s["name"] == "124").unwrap();
+    assert!(
+        shaft["reason"]
+            .as_str()
+            .unwrap()
+            .starts_with("the lift ELEV 124 itself, entered at its landings (reachable)"),
+        "{shaft}"
+    );
     let level_2 = spaces
         .iter()
         .filter(|s| s["floor_name"] == "Level 2" && s["reachable"] == true)
@@ -124,6 +141,25 @@ fn duplex_stairs_are_blocked_for_wheels_and_climbed_by_legs() {
         err.contains("stairs are not passable for a wheeled robot"),
         "{err}"
     );
+    // The stair blocks once, not once per landing.
+    assert_eq!(err.matches("stairs are not passable").count(), 1, "{err}");
+    let level_2: Vec<&serde_json::Value> = audit["profiles"][0]["spaces"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|s| s["floor_name"] == "Level 2")
+        .collect();
+    assert_eq!(level_2.len(), 10, "eight rooms and the two hallways");
+    for s in level_2 {
+        assert_eq!(s["reachable"], false, "{s}");
+        let stairs = s["blocked_by"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter(|b| b["kind"] == "landing")
+            .count();
+        assert_eq!(stairs, 1, "{s}");
+    }
 
     let legged = legged_profile(dir.path());
     let (code, out, err) = run(&[
