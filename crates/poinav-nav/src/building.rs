@@ -3,7 +3,9 @@
 //! connections for any robot profile.
 
 use glam::DVec2;
-use poinav_poi::{AccessibilityStatus, RobotProfile};
+use poinav_poi::{
+    clear_width_status, slope_status, stairs_status, AccessibilityStatus, RobotProfile,
+};
 use serde::{Deserialize, Serialize};
 
 use crate::floor::{Floor, FloorDoor};
@@ -137,28 +139,8 @@ impl VerticalConnection {
     pub fn status(&self, profile: &RobotProfile) -> (AccessibilityStatus, String) {
         use AccessibilityStatus::*;
         let (kind_status, kind_reason) = match self.kind {
-            ConnectionKind::Stair if profile.climbs_stairs() => (
-                FullAccess,
-                format!("profile {} climbs stairs", profile.name),
-            ),
-            ConnectionKind::Stair => (
-                Blocked,
-                format!(
-                    "stairs are not passable for a {} robot",
-                    format!("{:?}", profile.locomotion).to_lowercase()
-                ),
-            ),
-            ConnectionKind::Ramp => match self.slope_deg {
-                Some(s) if s <= profile.max_slope_deg => (
-                    FullAccess,
-                    format!("slope {s:.1} deg <= max {:.1} deg", profile.max_slope_deg),
-                ),
-                Some(s) => (
-                    Blocked,
-                    format!("slope {s:.1} deg > max {:.1} deg", profile.max_slope_deg),
-                ),
-                None => (PendingValidation, "slope unknown".into()),
-            },
+            ConnectionKind::Stair => stairs_status(profile),
+            ConnectionKind::Ramp => slope_status(self.slope_deg, profile),
             ConnectionKind::Lift => (FullAccess, "lift".into()),
         };
         if kind_status == Blocked {
@@ -196,38 +178,12 @@ pub fn worse(a: AccessibilityStatus, b: AccessibilityStatus) -> AccessibilitySta
     }
 }
 
-/// The clear-width rule of poinav-poi (docs/rules.md): at least MinClearanceWidth FULL_ACCESS,
-/// at least the robot's width RESTRICTED, else BLOCKED.
+/// The clear-width rule of poinav-poi ([`poinav_poi::clear_width_status`], docs/rules.md): at
+/// least MinClearanceWidth FULL_ACCESS, at least the robot's width RESTRICTED, else BLOCKED; a
+/// width that is not a positive number is unknown (PENDING_VALIDATION).
 pub fn width_status(clear_width_m: f64, profile: &RobotProfile) -> (AccessibilityStatus, String) {
-    let need = profile.min_clearance_width();
-    if !(clear_width_m.is_finite() && clear_width_m > 0.0) {
-        return (
-            AccessibilityStatus::PendingValidation,
-            "clear width unknown".into(),
-        );
-    }
-    if clear_width_m >= need {
-        (
-            AccessibilityStatus::FullAccess,
-            format!("clear width {clear_width_m:.3} m >= required {need:.3} m"),
-        )
-    } else if clear_width_m >= profile.width_m {
-        (
-            AccessibilityStatus::Restricted,
-            format!(
-                "clear width {clear_width_m:.3} m < required {need:.3} m, >= robot width {:.3} m",
-                profile.width_m
-            ),
-        )
-    } else {
-        (
-            AccessibilityStatus::Blocked,
-            format!(
-                "clear width {clear_width_m:.3} m < robot width {:.3} m",
-                profile.width_m
-            ),
-        )
-    }
+    let known = (clear_width_m.is_finite() && clear_width_m > 0.0).then_some(clear_width_m);
+    clear_width_status(known, None, profile)
 }
 
 /// AccessibilityStatus of `door` for `profile`, with the reason: the clear-width rule, except

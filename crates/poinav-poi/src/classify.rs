@@ -79,73 +79,102 @@ fn fmt_m(v: f64) -> String {
     format!("{v:.3} m")
 }
 
+/// The clear-width rule (docs/rules.md): at least the profile's MinClearanceWidth is
+/// FULL_ACCESS, at least the robot's width RESTRICTED, narrower BLOCKED, unknown
+/// PENDING_VALIDATION; with the reason (`source` says where the width comes from). Navigation
+/// applies the same rule to doors and connections for any profile.
+pub fn clear_width_status(
+    clear_width_m: Option<f64>,
+    source: Option<&str>,
+    profile: &RobotProfile,
+) -> (AccessibilityStatus, String) {
+    use AccessibilityStatus::*;
+    let need = profile.min_clearance_width();
+    let from = source.map(|s| format!(" ({s})")).unwrap_or_default();
+    match clear_width_m {
+        Some(w) if w >= need => (
+            FullAccess,
+            format!("clear width {}{from} >= required {}", fmt_m(w), fmt_m(need)),
+        ),
+        Some(w) if w >= profile.width_m => (
+            Restricted,
+            format!(
+                "clear width {}{from} < required {}, >= robot width {}",
+                fmt_m(w),
+                fmt_m(need),
+                fmt_m(profile.width_m)
+            ),
+        ),
+        Some(w) => (
+            Blocked,
+            format!(
+                "clear width {}{from} < robot width {}",
+                fmt_m(w),
+                fmt_m(profile.width_m)
+            ),
+        ),
+        None => (PendingValidation, "clear width unknown".into()),
+    }
+}
+
+/// Stairs: FULL_ACCESS for a profile that climbs them, else BLOCKED; with the reason.
+pub fn stairs_status(profile: &RobotProfile) -> (AccessibilityStatus, String) {
+    if profile.climbs_stairs() {
+        (
+            AccessibilityStatus::FullAccess,
+            format!("profile {} climbs stairs", profile.name),
+        )
+    } else {
+        (
+            AccessibilityStatus::Blocked,
+            format!(
+                "stairs are not passable for a {} robot",
+                format!("{:?}", profile.locomotion).to_lowercase()
+            ),
+        )
+    }
+}
+
+/// A ramp: FULL_ACCESS up to the profile's maximum slope, BLOCKED above it, PENDING_VALIDATION
+/// when the slope is unknown; with the reason.
+pub fn slope_status(
+    slope_deg: Option<f64>,
+    profile: &RobotProfile,
+) -> (AccessibilityStatus, String) {
+    match slope_deg {
+        Some(s) if s <= profile.max_slope_deg => (
+            AccessibilityStatus::FullAccess,
+            format!("slope {s:.1} deg <= max {:.1} deg", profile.max_slope_deg),
+        ),
+        Some(s) => (
+            AccessibilityStatus::Blocked,
+            format!("slope {s:.1} deg > max {:.1} deg", profile.max_slope_deg),
+        ),
+        None => (
+            AccessibilityStatus::PendingValidation,
+            "slope unknown".into(),
+        ),
+    }
+}
+
 fn element_access(
     kind: AccessibilityKind,
     facts: &Facts,
     profile: &RobotProfile,
 ) -> Option<(AccessibilityStatus, String)> {
-    use AccessibilityStatus::*;
-    let need = profile.min_clearance_width();
     Some(match kind {
         AccessibilityKind::None | AccessibilityKind::Space => return None,
         AccessibilityKind::Blocked => (
-            Blocked,
+            AccessibilityStatus::Blocked,
             format!("{} is not passable by a ground robot", facts.class),
         ),
-        AccessibilityKind::Stairs if profile.climbs_stairs() => (
-            FullAccess,
-            format!("profile {} climbs stairs", profile.name),
+        AccessibilityKind::Stairs => stairs_status(profile),
+        AccessibilityKind::Slope => slope_status(facts.slope_deg, profile),
+        AccessibilityKind::ClearWidth => clear_width_status(
+            facts.clear_width_m,
+            Some(facts.clear_width_source.unwrap_or("unknown")),
+            profile,
         ),
-        AccessibilityKind::Stairs => (
-            Blocked,
-            format!(
-                "stairs are not passable for a {:?} robot",
-                profile.locomotion
-            )
-            .to_lowercase(),
-        ),
-        AccessibilityKind::Slope => match facts.slope_deg {
-            Some(s) if s <= profile.max_slope_deg => (
-                FullAccess,
-                format!("slope {s:.1} deg <= max {:.1} deg", profile.max_slope_deg),
-            ),
-            Some(s) => (
-                Blocked,
-                format!("slope {s:.1} deg > max {:.1} deg", profile.max_slope_deg),
-            ),
-            None => (PendingValidation, "slope unknown".into()),
-        },
-        AccessibilityKind::ClearWidth => {
-            let source = facts.clear_width_source.unwrap_or("unknown");
-            match facts.clear_width_m {
-                Some(w) if w >= need => (
-                    FullAccess,
-                    format!(
-                        "clear width {} ({source}) >= required {}",
-                        fmt_m(w),
-                        fmt_m(need)
-                    ),
-                ),
-                Some(w) if w >= profile.width_m => (
-                    Restricted,
-                    format!(
-                        "clear width {} ({source}) < required {}, >= robot width {}",
-                        fmt_m(w),
-                        fmt_m(need),
-                        fmt_m(profile.width_m)
-                    ),
-                ),
-                Some(w) => (
-                    Blocked,
-                    format!(
-                        "clear width {} ({source}) < robot width {}",
-                        fmt_m(w),
-                        fmt_m(profile.width_m)
-                    ),
-                ),
-                None => (PendingValidation, "clear width unknown".into()),
-            }
-        }
     })
 }
 

@@ -26,7 +26,10 @@ pub mod runtime;
 mod taxonomy;
 mod write;
 
-pub use classify::{classify, Accessibility, Classification, Classified};
+pub use classify::{
+    classify, clear_width_status, slope_status, stairs_status, Accessibility, Classification,
+    Classified,
+};
 pub use condition::{Condition, Op, Operand};
 pub use error::PoiError;
 pub use facts::{FactContext, FactValue, Facts, MEASURES};
