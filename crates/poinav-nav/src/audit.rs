@@ -233,6 +233,7 @@ pub fn audit_profile(nav: &Navigator<'_>, start: Option<&str>) -> Result<Profile
 
     // Where reachability starts.
     let (starts, start_labels): (Vec<usize>, Vec<String>) = match start {
+        // `outside`: the entrances (unless a space has that name).
         Some(s)
             if matches!(
                 s.parse::<Place>(),
@@ -240,7 +241,7 @@ pub fn audit_profile(nav: &Navigator<'_>, start: Option<&str>) -> Result<Profile
                     target: Target::Outside,
                     ..
                 })
-            ) =>
+            ) && t.zone_node(b, "outside", None).is_none() =>
         {
             let floor = match s.parse::<Place>().ok().and_then(|p| p.floor) {
                 Some(f) => Some(

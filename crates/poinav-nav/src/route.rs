@@ -837,11 +837,25 @@ impl Navigator<'_> {
 
     /// A route from `from` to `to`.
     pub fn route(&self, from: &Place, to: &Place) -> Result<Route, NavError> {
-        for p in [from, to] {
+        // A space named `outside` is that space.
+        let named = |p: &Place| -> Result<Place, NavError> {
             if p.target == Target::Outside {
+                let floor = self.floor_index(p.floor.as_deref())?;
+                if self
+                    .topology
+                    .zone_node(self.building, "outside", floor)
+                    .is_some()
+                {
+                    return Ok(Place {
+                        floor: p.floor.clone(),
+                        target: Target::Zone("outside".into()),
+                    });
+                }
                 self.exterior_doors(p.floor.as_deref())?;
             }
-        }
+            Ok(p.clone())
+        };
+        let (from, to) = (&named(from)?, &named(to)?);
         let (a, b) = match (&from.target, &to.target) {
             (Target::Outside, Target::Outside) => {
                 return Err(NavError::Invalid(

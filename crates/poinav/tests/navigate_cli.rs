@@ -248,6 +248,40 @@ fn routes_start_outside_and_the_cli_warns_of_what_limits_navigation() {
     let length = route["length_m"].as_f64().unwrap();
     assert!((3.0..8.0).contains(&length), "{length}");
 
+    // The audit from outside starts at both entrances; the front door joins the hall and the
+    // outside.
+    let report = dir.path().join("fzk/report.html");
+    let (code, out, err) = run(&[
+        OsStr::new("audit"),
+        fzk.as_os_str(),
+        OsStr::new("-o"),
+        report.as_os_str(),
+        OsStr::new("--start"),
+        OsStr::new("outside"),
+        OsStr::new("--json"),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let audit: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let profile = &audit["profiles"][0];
+    assert_eq!(
+        profile["starts"],
+        serde_json::json!(["Haustuer", "Terrassentuer"])
+    );
+    let front = profile["doors"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|d| d["name"] == "Haustuer")
+        .unwrap();
+    assert_eq!(front["zones"], serde_json::json!(["1", "outside"]));
+    assert_eq!(
+        (
+            front["exterior"].as_bool(),
+            front["grid_passable"].as_bool()
+        ),
+        (Some(true), Some(true))
+    );
+
     // A model without spaces: a clear warning, and no entrance to start from.
     let bare = corpus_file("wall-door-column-ifc4x3.ifc");
     let report = dir.path().join("bare/report.html");
