@@ -48,6 +48,14 @@ try {
   const loaded = await page.evaluate(() => ({ elements: window.poinav.elements, robots: window.poinav.scene.robots.length, errors: window.poinav.errors, frames: window.poinav.frames }));
   check('building loaded', loaded.elements > 10 && loaded.robots === 2, loaded);
 
+  // Rates: frames drawn and states received per second (software WebGL here).
+  const r0 = await page.evaluate(() => [window.poinav.frames, window.poinav.states, performance.now()]);
+  await pause(3000);
+  const r1 = await page.evaluate(() => [window.poinav.frames, window.poinav.states, performance.now()]);
+  const secs = (r1[2] - r0[2]) / 1000;
+  const rates = { frames_per_s: (r1[0] - r0[0]) / secs, states_per_s: (r1[1] - r0[1]) / secs };
+  check('live rates', rates.frames_per_s > 1 && rates.states_per_s > 10, rates);
+
   // 2. A screenshot shows the building.
   await page.screenshot({ path: join(outDir, 'viewer.png') });
   const coverage = await page.evaluate(() => window.poinav.coverage());
@@ -133,7 +141,23 @@ try {
   await page.keyboard.press('c');
   await pause(300);
 
-  // 10. Playback of a scenario trace reaches its end.
+  // 10. Reset, then both robots driven towards each other in the corridor (C-1): the panel
+  // lists C-2 as it happens, with the zone's SPEED_REDUCTION.
+  await page.click('#reset');
+  await pause(500);
+  await page.keyboard.down('ArrowUp');
+  await page.keyboard.down('w');
+  const t1 = Date.now();
+  let c2 = [];
+  while (Date.now() - t1 < 15000 && c2.length === 0) {
+    await pause(100);
+    c2 = await page.$$eval('#events li', (lis) => lis.map((li) => li.textContent).filter((t) => t.includes('C-2 active')));
+  }
+  await page.keyboard.up('ArrowUp');
+  await page.keyboard.up('w');
+  check('C-2 listed as it happens', c2.length > 0 && c2.every((t) => t.includes('SPEED_REDUCTION: speed reduced')), { c2 });
+
+  // 11. Playback of a scenario trace reaches its end.  // 10. Playback of a scenario trace reaches its end.
   await page.setInputFiles('#trace-file', tracePath);
   await page.waitForFunction(() => window.poinav.playback && window.poinav.playback(), null, { timeout: 10000 });
   await page.click('#play');

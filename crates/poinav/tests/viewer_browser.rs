@@ -92,7 +92,7 @@ fn viewer_in_chromium() {
     assert!(run.status.success(), "{report:#}");
     let m = |check: &str, key: &str| report["checks"][check]["measured"][key].clone();
     let checks = report["checks"].as_object().unwrap();
-    assert_eq!(checks.len(), 12, "{report:#}");
+    assert_eq!(checks.len(), 14, "{report:#}");
     assert!(checks.values().all(|c| c["ok"] == true));
     assert!(m("building covers the view", "coverage").as_f64().unwrap() > 0.08);
     assert!(m("building loaded", "elements").as_u64().unwrap() >= 17);
