@@ -10,8 +10,10 @@ use poinav_sim::RobotSetup;
 
 use crate::error::ViewerError;
 
-/// Lattice spacing of the candidate start points, metres.
+/// Finest lattice spacing of the candidate start points, metres.
 const STEP_M: f64 = 0.1;
+/// Most candidate points: a huge space gets a coarser lattice, so placement stays quick.
+const MAX_POINTS: f64 = 20_000.0;
 /// Distance kept between the two default robots, metres.
 const APART_M: f64 = 2.5;
 
@@ -84,13 +86,15 @@ pub fn default_robots(
             .any(|o| o.rings.first().is_some_and(|r| inside(r, p)))
     };
     let mut candidates: Vec<(f64, DVec2)> = Vec::new();
-    let (nx, ny) = (
-        ((hi.x - lo.x) / STEP_M) as usize,
-        ((hi.y - lo.y) / STEP_M) as usize,
-    );
-    for j in 0..=ny.min(4000) {
-        for i in 0..=nx.min(4000) {
-            let p = lo + DVec2::new(i as f64, j as f64) * STEP_M;
+    let size = hi - lo;
+    if !(size.x.is_finite() && size.y.is_finite()) {
+        return Err(fail("its largest space has no finite outline"));
+    }
+    let step = STEP_M.max((size.x * size.y / MAX_POINTS).sqrt());
+    let (nx, ny) = ((size.x / step) as usize, (size.y / step) as usize);
+    for j in 0..=ny {
+        for i in 0..=nx {
+            let p = lo + DVec2::new(i as f64, j as f64) * step;
             if !inside(&zone.ring, p) || in_obstacle(p) {
                 continue;
             }
