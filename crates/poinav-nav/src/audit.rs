@@ -51,6 +51,9 @@ pub struct DoorAudit {
     pub exterior: bool,
     /// Names of the zones on its two sides (`outside` for none).
     pub zones: Vec<String>,
+    /// The sides come from the spaces the door bounds (in IFC its IfcRelSpaceBoundary), not
+    /// from geometry.
+    pub sides_from_space_boundaries: bool,
     /// POI roles.
     pub roles: Vec<Role>,
 }
@@ -205,6 +208,7 @@ pub fn audit_profile(nav: &Navigator<'_>, start: Option<&str>) -> Result<Profile
                 grid_passable: nav.grid_passable[s.node],
                 exterior: s.exterior(),
                 zones: s.zones.iter().map(|z| zone_label(s.floor, *z)).collect(),
+                sides_from_space_boundaries: s.from_spaces,
                 roles: d.roles.clone(),
             }
         })

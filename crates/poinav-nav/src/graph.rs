@@ -107,6 +107,9 @@ pub struct DoorSides {
     /// Zone index on the side against the passage frame's normal and along it; `None` is
     /// outside the building (no zone within 0.5 m, or the door bounds one space only).
     pub zones: [Option<usize>; 2],
+    /// Where the sides come from: `true` from the spaces the door bounds
+    /// ([`crate::FloorDoor::spaces`]), `false` from geometry alone.
+    pub from_spaces: bool,
 }
 
 impl DoorSides {
@@ -311,11 +314,16 @@ impl Topology {
                         length_m: nodes[zn].position().distance(p),
                     });
                 }
+                let from_spaces = d
+                    .spaces
+                    .as_ref()
+                    .is_some_and(|ids| floor.zones.iter().any(|z| ids.contains(&z.id)));
                 doors.push(DoorSides {
                     floor: fi,
                     door: k,
                     node,
                     zones,
+                    from_spaces,
                 });
             }
         }
@@ -578,6 +586,12 @@ impl Topology {
                     NodeKind::Door => {
                         let sides = self.door(n.floor, n.index);
                         v["exterior"] = serde_json::json!(sides.is_some_and(|s| s.exterior()));
+                        v["sides_from"] =
+                            serde_json::json!(if sides.is_some_and(|s| s.from_spaces) {
+                                "space-boundaries"
+                            } else {
+                                "geometry"
+                            });
                         v["status"] = serde_json::json!(statuses[n.id].0);
                         v["reason"] = serde_json::json!(statuses[n.id].1);
                     }

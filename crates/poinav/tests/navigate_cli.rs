@@ -274,6 +274,7 @@ fn routes_start_outside_and_the_cli_warns_of_what_limits_navigation() {
         .find(|d| d["name"] == "Haustuer")
         .unwrap();
     assert_eq!(front["zones"], serde_json::json!(["1", "outside"]));
+    assert_eq!(front["sides_from_space_boundaries"], true);
     assert_eq!(
         (
             front["exterior"].as_bool(),
