@@ -6,6 +6,8 @@
 //! element's openings are its own and those of the elements it is a part of
 //! (`IfcRelAggregates`), as IfcOpenShell applies them.
 
+use std::time::{Duration, Instant};
+
 use glam::DAffine3;
 use poinav_ifc::{spatial, Entity, EntityId, Model};
 use rayon::prelude::*;
@@ -13,7 +15,7 @@ use rayon::prelude::*;
 use crate::error::{degenerate, GeomError};
 use crate::mesh::{ElementMesh, Mesh};
 use crate::placement::PlacementCache;
-use crate::representation_mesh::{subtract, ItemMesher, Part};
+use crate::representation_mesh::{past, subtract, Cut, ItemMesher, Part};
 use crate::surface_style::material_colour;
 
 /// Deepest aggregation whose openings are applied to its parts.
@@ -21,6 +23,10 @@ const MAX_AGGREGATE_DEPTH: usize = 8;
 
 /// Most openings applied to one element.
 pub const MAX_OPENINGS: usize = 10_000;
+
+/// Longest time one product may take to mesh before it is left out with
+/// [`GeomError::TimeLimit`]; no element of the corpus takes more than a few milliseconds.
+pub const PRODUCT_TIME_LIMIT: Duration = Duration::from_secs(20);
 
 /// The meshes of a model.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -31,6 +37,29 @@ pub struct ModelMeshes {
     pub spaces: Vec<ElementMesh>,
     /// Products whose geometry could not be made, in file order, with why.
     pub failures: Vec<(EntityId, GeomError)>,
+    /// Elements with no `Representation` at all and no parts that could carry one (see
+    /// [`without_representation`]): nothing to mesh, but a reader of the export should know.
+    pub without_geometry: Vec<EntityId>,
+}
+
+/// Elements (not openings) with no `Representation` and not decomposed into parts, in file
+/// order: a door or wall like this is invisible in any 3D export and absent from floor plans.
+/// (An element assembly or a curtain wall without its own shape is drawn by its parts and is
+/// not listed.)
+pub fn without_representation(model: &Model) -> Vec<Entity<'_>> {
+    let mut out: Vec<Entity<'_>> = model
+        .instances_of("IfcElement")
+        .into_iter()
+        .filter(|p| !p.is_a("IfcFeatureElementSubtraction"))
+        .filter(|p| p.get("Representation").is_none())
+        .filter(|p| {
+            p.inverse("IsDecomposedBy")
+                .iter()
+                .all(|r| r.get_refs("RelatedObjects").is_empty())
+        })
+        .collect();
+    out.sort_by_key(|p| p.position());
+    out
 }
 
 /// The products [`mesh_model`] meshes: elements other than openings, and spaces, that have a
@@ -48,18 +77,31 @@ pub fn meshed_products(model: &Model) -> Vec<Entity<'_>> {
 }
 
 /// Meshes every element and space of `model` (see [`meshed_products`]) in parallel on the
-/// current rayon pool. The result is the same whatever the number of threads.
+/// current rayon pool. The result is the same whatever the number of threads. A product that
+/// takes longer than [`PRODUCT_TIME_LIMIT`] is a failure ([`GeomError::TimeLimit`]).
 pub fn mesh_model(model: &Model) -> ModelMeshes {
+    mesh_model_within(model, PRODUCT_TIME_LIMIT)
+}
+
+/// [`mesh_model`] with another time limit per product. Only pathological products reach a
+/// limit, and only those depend on the machine's speed.
+pub fn mesh_model_within(model: &Model, limit: Duration) -> ModelMeshes {
     let products = meshed_products(model);
     let results: Vec<(Entity<'_>, Result<ElementMesh, GeomError>)> = products
         .par_iter()
         .with_min_len(4)
         .map_init(
             || PlacementCache::new(model),
-            |cache, &p| (p, mesh_product(cache, p)),
+            |cache, &p| (p, mesh_product_within(cache, p, limit)),
         )
         .collect();
-    let mut out = ModelMeshes::default();
+    let mut out = ModelMeshes {
+        without_geometry: without_representation(model)
+            .iter()
+            .map(Entity::id)
+            .collect(),
+        ..ModelMeshes::default()
+    };
     for (p, r) in results {
         match r {
             Ok(m) if p.is_a("IfcSpace") => out.spaces.push(m),
@@ -77,9 +119,36 @@ pub fn mesh_product<'m>(
     cache: &mut PlacementCache<'m>,
     product: Entity<'m>,
 ) -> Result<ElementMesh, GeomError> {
+    mesh_product_within(cache, product, PRODUCT_TIME_LIMIT)
+}
+
+/// [`mesh_product`] giving up with [`GeomError::TimeLimit`] (naming the product) after
+/// `limit`.
+pub fn mesh_product_within<'m>(
+    cache: &mut PlacementCache<'m>,
+    product: Entity<'m>,
+    limit: Duration,
+) -> Result<ElementMesh, GeomError> {
+    let deadline = Instant::now().checked_add(limit);
+    let timed_out = || GeomError::TimeLimit {
+        id: product.id(),
+        class: product.type_name().to_string(),
+        seconds: limit.as_secs_f64(),
+    };
+    match mesh_until(cache, product, deadline) {
+        Err(GeomError::TimeLimit { .. }) => Err(timed_out()),
+        other => other,
+    }
+}
+
+fn mesh_until<'m>(
+    cache: &mut PlacementCache<'m>,
+    product: Entity<'m>,
+    deadline: Option<Instant>,
+) -> Result<ElementMesh, GeomError> {
     let placement = cache.product(product)?;
     let rep = body_representation(product)?;
-    let mut mesher = ItemMesher::new(cache.units());
+    let mut mesher = ItemMesher::with_deadline(cache.units(), deadline);
     let mut parts = mesher.representation(rep)?;
     let had_triangles = parts.iter().any(|p| !p.mesh.is_empty());
     let openings = openings_of(product);
@@ -94,16 +163,34 @@ pub fn mesh_product<'m>(
         let to_host = placement.inverse();
         let mut cutters: Vec<Part> = Vec::new();
         for opening in openings {
+            if past(deadline) {
+                return Err(GeomError::TimeLimit {
+                    id: product.id(),
+                    class: String::new(),
+                    seconds: 0.0,
+                });
+            }
             let t: DAffine3 = to_host * cache.product(opening)?;
             let rep = body_representation(opening)?;
-            let mut m = ItemMesher::new(cache.units());
+            let mut m = ItemMesher::with_deadline(cache.units(), deadline);
             for mut part in m.representation(rep)? {
                 part.mesh.transform(&t);
                 cutters.push(part);
             }
         }
-        parts = subtract(parts, &cutters)
-            .ok_or_else(|| degenerate(&product, "subtracting its openings failed"))?;
+        parts = match subtract(parts, &cutters, deadline) {
+            Ok(parts) => parts,
+            Err(Cut::Failed) => {
+                return Err(degenerate(&product, "subtracting its openings failed"))
+            }
+            Err(Cut::TimeLimit) => {
+                return Err(GeomError::TimeLimit {
+                    id: product.id(),
+                    class: String::new(),
+                    seconds: 0.0,
+                })
+            }
+        };
     }
     let mut mesh = Mesh::default();
     for p in &parts {

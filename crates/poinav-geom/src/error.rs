@@ -76,6 +76,19 @@ pub enum GeomError {
         /// Why nothing is left.
         reason: &'static str,
     },
+    /// Meshing the product took longer than its time limit (pathological geometry: thousands
+    /// of openings or boolean operands); it is left out instead of holding up the model.
+    #[error(
+        "{id}: {class} took longer than {seconds} s to mesh (pathological geometry); left out"
+    )]
+    TimeLimit {
+        /// The product.
+        id: EntityId,
+        /// Its class.
+        class: String,
+        /// The limit, seconds.
+        seconds: f64,
+    },
     /// A product without a representation from which a footprint can be made.
     #[error("{id}: {class} has no shape representation with geometry")]
     NoGeometry {
@@ -97,6 +110,7 @@ impl GeomError {
             | GeomError::PlacementChain { id, .. }
             | GeomError::Degenerate { id, .. }
             | GeomError::Empty { id, .. }
+            | GeomError::TimeLimit { id, .. }
             | GeomError::NoGeometry { id, .. } => *id,
         }
     }

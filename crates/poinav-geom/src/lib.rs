@@ -65,7 +65,10 @@ mod unit_assignment;
 
 pub use door::{door_geometry, DoorGeometry};
 pub use door_passage::{door_passage, DoorPassage};
-pub use element_mesh::{mesh_model, mesh_product, ModelMeshes};
+pub use element_mesh::{
+    mesh_model, mesh_model_within, mesh_product, mesh_product_within, without_representation,
+    ModelMeshes, PRODUCT_TIME_LIMIT,
+};
 pub use error::GeomError;
 pub use floor_plan::{
     floor_plans, floor_plans_with_meshes, FloorPlan, PlanItem, PlanOptions, PlanProblem, PlanSource,

@@ -8,6 +8,8 @@
 //! representation, mapped items nested at most [`MAX_DEPTH`] deep, boolean chains at most
 //! [`MAX_BOOLEAN_CHAIN`] long; past that the representation is an error.
 
+use std::time::Instant;
+
 use glam::{DAffine3, DVec2, DVec3};
 use poinav_ifc::Entity;
 
@@ -60,6 +62,7 @@ impl Part {
 #[derive(Debug)]
 pub struct ItemMesher {
     units: Units,
+    deadline: Option<Instant>,
     items: usize,
     triangles: usize,
     /// The colour of the first styled item met outside boolean second operands.
@@ -70,8 +73,15 @@ pub struct ItemMesher {
 impl ItemMesher {
     /// A mesher converting lengths with `units`.
     pub fn new(units: Units) -> ItemMesher {
+        ItemMesher::with_deadline(units, None)
+    }
+
+    /// A mesher that gives up with [`GeomError::TimeLimit`] (naming the item it was at) once
+    /// `deadline` has passed; checked at every item and before every boolean operation.
+    pub fn with_deadline(units: Units, deadline: Option<Instant>) -> ItemMesher {
         ItemMesher {
             units,
+            deadline,
             items: 0,
             triangles: 0,
             colour: None,
@@ -112,6 +122,9 @@ impl ItemMesher {
                 &item,
                 "mapped items or booleans nested too deeply",
             ));
+        }
+        if past(self.deadline) {
+            return Err(time_limit(&item));
         }
         self.items += 1;
         if self.items > MAX_ITEMS {
@@ -278,8 +291,13 @@ impl ItemMesher {
             } else {
                 let others = self.operand(second, depth + 1)?;
                 match op {
-                    "DIFFERENCE" => subtract(parts, &others)
-                        .ok_or_else(|| degenerate(&b, "boolean difference failed"))?,
+                    "DIFFERENCE" => match subtract(parts, &others, self.deadline) {
+                        Ok(parts) => parts,
+                        Err(Cut::Failed) => {
+                            return Err(degenerate(&b, "boolean difference failed"))
+                        }
+                        Err(Cut::TimeLimit) => return Err(time_limit(&b)),
+                    },
                     "UNION" => {
                         parts.extend(others);
                         parts
@@ -313,14 +331,42 @@ fn grow(mesh: &Mesh, margin: f64) -> Option<Mesh> {
     Some(m)
 }
 
+/// Why [`subtract`] gave up.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Cut {
+    /// The boolean library failed.
+    Failed,
+    /// The deadline passed.
+    TimeLimit,
+}
+
+/// True once `deadline` (if any) has passed.
+pub(crate) fn past(deadline: Option<Instant>) -> bool {
+    deadline.is_some_and(|d| Instant::now() > d)
+}
+
+/// A [`GeomError::TimeLimit`] at instance `e` (the caller names the product and the limit).
+fn time_limit(e: &Entity<'_>) -> GeomError {
+    GeomError::TimeLimit {
+        id: e.id(),
+        class: e.type_name().to_string(),
+        seconds: 0.0,
+    }
+}
+
 /// Every closed part of `parts` less every closed part of `cutters` that can touch it; open
-/// parts are kept as they are. `None` when the boolean library fails.
+/// parts are kept as they are. Fails when the boolean library fails or `deadline` passes
+/// (checked before every difference).
 ///
 /// Each cutter is first grown by [`CUTTER_MARGIN`] on every side (scaled about the centre of
 /// its box), so that faces of a cutter lying exactly in faces of the part (an opening as deep
 /// as its wall is thick, a door opening flush with the wall's foot) cut through cleanly
 /// instead of leaving zero-thickness skins.
-pub fn subtract(parts: Vec<Part>, cutters: &[Part]) -> Option<Vec<Part>> {
+pub fn subtract(
+    parts: Vec<Part>,
+    cutters: &[Part],
+    deadline: Option<Instant>,
+) -> Result<Vec<Part>, Cut> {
     let cutters: Vec<(Part, (DVec3, DVec3))> = cutters
         .iter()
         .filter(|c| c.closed)
@@ -355,9 +401,12 @@ pub fn subtract(parts: Vec<Part>, cutters: &[Part]) -> Option<Vec<Part>> {
             continue;
         };
         for i in touching {
+            if past(deadline) {
+                return Err(Cut::TimeLimit);
+            }
             let cutter = solids[i].get_or_insert_with(|| Solid::new(&cutters[i].0.mesh));
             if let Some(c) = cutter {
-                solid = solid.difference(c)?;
+                solid = solid.difference(c).ok_or(Cut::Failed)?;
             }
         }
         if !solid.is_empty() {
@@ -367,7 +416,7 @@ pub fn subtract(parts: Vec<Part>, cutters: &[Part]) -> Option<Vec<Part>> {
             });
         }
     }
-    Some(out)
+    Ok(out)
 }
 
 /// What the closed parts of `parts` share with the union of the closed parts of `others`.

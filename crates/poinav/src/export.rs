@@ -76,20 +76,40 @@ pub fn run(export: &Export) -> anyhow::Result<ExitCode> {
     .with_context(|| format!("writing {}", args.output.display()))?;
     let triangles: usize = meshes.elements.iter().map(|e| e.mesh.triangles.len()).sum();
     println!(
-        "wrote {}: {} elements ({} triangles) on {} storeys; {} elements without geometry",
+        "wrote {}: {} elements ({} triangles) on {} storeys; {} elements without geometry ({} failed, {} without a representation)",
         args.output.display(),
         meshes.elements.len(),
         triangles,
         structure.storeys.len(),
-        meshes.failures.len()
+        meshes.failures.len() + meshes.without_geometry.len(),
+        meshes.failures.len(),
+        meshes.without_geometry.len(),
     );
-    for (id, err) in meshes.failures.iter().take(20) {
-        eprintln!("warning: {}", crate::with_id(id, err));
+    let absent = meshes.without_geometry.iter().map(|&id| {
+        let e = model.entity(id);
+        let class = e.map(|e| e.type_name().to_string()).unwrap_or_default();
+        let name = e
+            .and_then(|e| e.name())
+            .map(|n| format!(" '{n}'"))
+            .unwrap_or_default();
+        (
+            id,
+            format!("{class}{name} has no Representation: not in the export"),
+        )
+    });
+    let problems: Vec<(poinav_ifc::EntityId, String)> = meshes
+        .failures
+        .iter()
+        .map(|(id, e)| (*id, e.to_string()))
+        .chain(absent)
+        .collect();
+    for (id, message) in problems.iter().take(20) {
+        eprintln!("warning: {}", crate::with_id(id, message));
     }
-    if meshes.failures.len() > 20 {
+    if problems.len() > 20 {
         eprintln!(
             "warning: ... and {} more elements without geometry",
-            meshes.failures.len() - 20
+            problems.len() - 20
         );
     }
     Ok(ExitCode::SUCCESS)
