@@ -17,6 +17,8 @@ struct Shape {
     max_depth: usize,
     max_ref: u64,
     dangling: Vec<u64>,
+    /// The first bare word standing as a value (`NaN`, `inf`, `T`): not STEP.
+    bare: Option<(usize, usize)>,
 }
 
 /// Walks one argument list byte by byte; `exists` tells whether a referenced id is defined.
@@ -29,8 +31,31 @@ fn shape(args: &[u8], exists: impl Fn(u64) -> bool) -> Shape {
     let mut dangling = Vec::new();
     let mut i = 0;
     let mut closed_at = None;
+    // At the start of a value (after `(` or `,`), where a bare word is not STEP.
+    let mut fresh = false;
+    let mut bare = None;
     while i < args.len() {
         let c = args[i];
+        if fresh && !matches!(c, b' ' | b'\t' | b'\r' | b'\n') {
+            fresh = false;
+            if c.is_ascii_alphabetic() {
+                let mut j = i;
+                while j < args.len() && (args[j].is_ascii_alphanumeric() || args[j] == b'_') {
+                    j += 1;
+                }
+                let mut k = j;
+                while k < args.len() && args[k].is_ascii_whitespace() {
+                    k += 1;
+                }
+                // A typed value (`IFCLABEL('x')`) is followed by `(`; anything else is bare.
+                if args.get(k) != Some(&b'(') && bare.is_none() {
+                    bare = Some((i, j));
+                }
+                saw_value = true;
+                i = j;
+                continue;
+            }
+        }
         match c {
             b'\'' => {
                 saw_value = true;
@@ -61,6 +86,7 @@ fn shape(args: &[u8], exists: impl Fn(u64) -> bool) -> Shape {
                 }
                 depth += 1;
                 max_depth = max_depth.max(depth);
+                fresh = true;
             }
             b')' => {
                 if depth == 0 {
@@ -73,7 +99,12 @@ fn shape(args: &[u8], exists: impl Fn(u64) -> bool) -> Shape {
                     break;
                 }
             }
-            b',' if depth == 1 => commas += 1,
+            b',' => {
+                if depth == 1 {
+                    commas += 1;
+                }
+                fresh = true;
+            }
             b'#' => {
                 saw_value = true;
                 let s = i + 1;
@@ -115,6 +146,7 @@ fn shape(args: &[u8], exists: impl Fn(u64) -> bool) -> Shape {
         max_depth,
         max_ref,
         dangling,
+        bare,
     }
 }
 
@@ -152,6 +184,17 @@ pub(crate) fn structure(model: &Model) -> (Vec<Problem>, Vec<u64>) {
                             "an attribute nests lists {} deep (limit {}); that attribute cannot be read, the others can",
                             s.max_depth - 1,
                             crate::value::MAX_NESTING
+                        ),
+                    ));
+                }
+                if let Some((a, b)) = s.bare {
+                    out.push((
+                        DiagnosticKind::BadValue,
+                        Some(inst.id),
+                        inst.start,
+                        format!(
+                            "`{}` is not a STEP value (numbers are written like 1.5E3, enumerations like .T.); that attribute cannot be read, the others can",
+                            String::from_utf8_lossy(&args[a..b])
                         ),
                     ));
                 }

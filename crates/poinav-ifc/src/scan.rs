@@ -127,7 +127,15 @@ pub(crate) fn scan(bytes: &[u8], mut pos: usize, schema: Schema) -> Result<Scan,
             pos = find_record_end(bytes, pos + 4).map_err(lift)? + 1;
             scan_section(bytes, &mut pos, schema, &mut out, &mut type_cache)?;
             sections += 1;
-        } else if rest.starts_with(b"END-ISO-10303-21") || (rest.is_empty() && sections > 0) {
+        } else if rest.starts_with(b"END-ISO-10303-21") {
+            break;
+        } else if rest.is_empty() && sections > 0 {
+            out.problems.push((
+                DiagnosticKind::Truncated,
+                None,
+                pos,
+                "the file does not end with `END-ISO-10303-21;`: it may have been cut short after its DATA section".into(),
+            ));
             break;
         } else if rest.is_empty() {
             return Err((
@@ -321,12 +329,27 @@ mod tests {
     #[test]
     fn damaged_instances_are_skipped_with_a_problem() {
         let s = scan(
-            b"DATA;#1 IFCWALL();garbage;#=X();#2=IFCWALL();ENDSEC;",
+            b"DATA;#1 IFCWALL();garbage;#=X();#2=IFCWALL();ENDSEC;END-ISO-10303-21;",
             0,
             Schema::Ifc4,
         )
         .unwrap();
         assert_eq!(s.instances.len(), 1);
         assert_eq!(s.problems.len(), 3);
+    }
+
+    #[test]
+    fn a_file_without_its_end_line_reads_with_a_truncation_problem() {
+        let s = scan(b"DATA;#1=IFCWALL();ENDSEC;\n", 0, Schema::Ifc4).unwrap();
+        assert_eq!(s.instances.len(), 1);
+        assert_eq!(s.problems.len(), 1);
+        assert_eq!(s.problems[0].0, DiagnosticKind::Truncated);
+        let s = scan(
+            b"DATA;#1=IFCWALL();ENDSEC;END-ISO-10303-21;",
+            0,
+            Schema::Ifc4,
+        )
+        .unwrap();
+        assert!(s.problems.is_empty());
     }
 }

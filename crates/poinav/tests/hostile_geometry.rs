@@ -270,8 +270,10 @@ fn damaged_geometry_drops_only_the_damaged_wall_and_names_it() {
     let (_tmp, dir) = corpus();
     for (name, why) in DAMAGED_WALL_A {
         let file = dir.join(name);
-        // Geometry is not checked on reading: no diagnostics.
-        assert_eq!(inspect_ok(&file), 0, "{name}");
+        // Geometry is not checked on reading: no diagnostics, except for the bare `NaN` token,
+        // which is not STEP (a bad-value diagnostic of its instance).
+        let bare_nan = usize::from(name.starts_with("nan-"));
+        assert_eq!(inspect_ok(&file), bare_nan, "{name}");
         let (names, warnings) = glb(&file, &dir.join(format!("{name}.glb")));
         assert_eq!(
             names,
@@ -345,8 +347,8 @@ fn every_truncation_is_an_exact_error_or_a_readable_model() {
                 }
             }
             None => {
-                // Only `END-ISO-10303-21;` is missing: read without a diagnostic.
-                assert_eq!(inspect_ok(&file), 0, "{name}");
+                // Only `END-ISO-10303-21;` is missing: read, with one truncation diagnostic.
+                assert_eq!(inspect_ok(&file), 1, "{name}");
                 let (names, warnings) = glb(&file, &dir.join("t.glb"));
                 assert_eq!(names, set(&ALL), "{name}");
                 assert!(warnings.is_empty());

@@ -609,3 +609,48 @@ fn hundred_megabyte_string_attribute_reads() {
     assert_door(&r, "Door");
     assert_rest_of_model(&r);
 }
+
+#[test]
+fn a_bare_nan_is_a_bad_value_of_its_instance_and_the_rest_still_reads() {
+    // `NaN` and `inf` are not STEP tokens (reals are digits with a point); some exporters
+    // write them anyway.
+    let bytes = replace_once(
+        template().as_bytes(),
+        "#10=IFCCARTESIANPOINT((0.,0.,0.));",
+        b"#10=IFCCARTESIANPOINT((NaN,0.,inf));",
+    );
+    let r = damaged(&bytes, &[diag("bad-value", 10, 16)]);
+    let message = r["diagnostic_list"][0]["message"].as_str().unwrap();
+    assert!(
+        message.starts_with("`NaN` is not a STEP value"),
+        "{message}"
+    );
+    assert_door(&r, "Door");
+    assert_rest_of_model(&r);
+}
+
+#[test]
+fn typed_values_and_enumerations_are_not_bare_words() {
+    let bytes = replace_once(
+        template().as_bytes(),
+        "#5=IFCWALL('2YvctVUKr0kugbFTf53O9L',$,'Wall',$,$,#13,$,$,.STANDARD.);",
+        b"#5=IFCWALL('2YvctVUKr0kugbFTf53O9L',$,'Wall',IFCTEXT ('x'),$,#13,$,$, .STANDARD. );",
+    );
+    let r = report(bytes);
+    assert_eq!(diagnostics(&r), []);
+}
+
+#[test]
+fn a_missing_end_iso_line_is_a_truncation_diagnostic_and_the_model_reads() {
+    let text = template();
+    let cut = text.strip_suffix("END-ISO-10303-21;\n").unwrap();
+    let r = damaged(cut.as_bytes(), &[("truncated".to_string(), None, Some(22))]);
+    let message = r["diagnostic_list"][0]["message"].as_str().unwrap();
+    assert_eq!(
+        message,
+        "the file does not end with `END-ISO-10303-21;`: it may have been cut short after its DATA section"
+    );
+    assert_eq!(r["instances"], 13);
+    assert_door(&r, "Door");
+    assert_rest_of_model(&r);
+}
