@@ -1,5 +1,7 @@
 //! Atomic output: write to a temporary file beside the target, then rename over it, so a
-//! failed or interrupted write never leaves a partial file.
+//! failed or interrupted write never leaves a partial file. Temporary files are named
+//! `.poinav-<pid>-<random>.tmp`; one left behind by a process that was killed (SIGKILL cannot be
+//! caught) is removed by the next write into the same folder once that process is gone.
 
 use std::io::Write;
 use std::path::Path;
@@ -10,8 +12,10 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
         Some(p) if !p.as_os_str().is_empty() => p,
         _ => Path::new("."),
     };
+    sweep_stale(dir);
+    let prefix = format!(".poinav-{}-", std::process::id());
     let mut tmp = tempfile::Builder::new()
-        .prefix(".poinav-")
+        .prefix(&prefix)
         .suffix(".tmp")
         .tempfile_in(dir)?;
     tmp.write_all(bytes)?;
@@ -24,6 +28,34 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     }
     tmp.persist(path).map_err(|e| e.error)?;
     Ok(())
+}
+
+/// The process id in a temporary file name `.poinav-<pid>-<random>.tmp`.
+fn owner(name: &str) -> Option<u32> {
+    let rest = name.strip_prefix(".poinav-")?.strip_suffix(".tmp")?;
+    rest.split_once('-')?.0.parse().ok()
+}
+
+/// Removes temporary files in `dir` left by poinav processes that no longer run. Only where a
+/// process's liveness can be told (`/proc`); failures are ignored (it is tidying, not output).
+fn sweep_stale(dir: &Path) {
+    let proc_fs = Path::new("/proc/self");
+    if !proc_fs.exists() {
+        return;
+    }
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return;
+    };
+    let me = std::process::id();
+    for e in entries.flatten() {
+        let name = e.file_name();
+        let Some(pid) = name.to_str().and_then(owner) else {
+            continue;
+        };
+        if pid != me && !Path::new(&format!("/proc/{pid}")).exists() {
+            let _ = std::fs::remove_file(e.path());
+        }
+    }
 }
 
 #[cfg(test)]
@@ -44,5 +76,39 @@ mod tests {
             .map(|e| e.unwrap().file_name())
             .collect();
         assert_eq!(names, vec![std::ffi::OsString::from("out.ifc")]);
+    }
+
+    #[test]
+    fn temporaries_of_dead_processes_are_swept_and_others_kept() {
+        let dir = tempfile::tempdir().unwrap();
+        // No process has this id (above Linux's largest pid, 2^22).
+        let dead = ".poinav-99999999-abc123.tmp";
+        // Process 1 always runs; our own temporaries may be in use.
+        let alive = ".poinav-1-abc123.tmp";
+        let mine = format!(".poinav-{}-abc123.tmp", std::process::id());
+        let other = "notes.tmp";
+        for n in [dead, alive, mine.as_str(), other] {
+            std::fs::write(dir.path().join(n), b"x").unwrap();
+        }
+        write_atomic(&dir.path().join("out.ifc"), b"abc").unwrap();
+        let mut names: Vec<String> = std::fs::read_dir(dir.path())
+            .unwrap()
+            .map(|e| e.unwrap().file_name().into_string().unwrap())
+            .collect();
+        names.sort();
+        let mut want = vec![
+            alive.to_string(),
+            mine,
+            other.to_string(),
+            "out.ifc".to_string(),
+        ];
+        if !Path::new("/proc/self").exists() {
+            want.push(dead.to_string());
+        }
+        want.sort();
+        assert_eq!(names, want);
+        assert_eq!(owner(".poinav-42-x.tmp"), Some(42));
+        assert_eq!(owner(".poinav-x.tmp"), None);
+        assert_eq!(owner("poinav-42-x.tmp"), None);
     }
 }

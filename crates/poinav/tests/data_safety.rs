@@ -440,8 +440,9 @@ fn enrich_cmd(input: &Path, output: &Path) -> Command {
 
 /// Kills `poinav enrich` of the 17.9 MB file at several moments: the visible output is either
 /// missing or complete and equal to an uninterrupted run's, never partial. A SIGKILL between
-/// the temporary file's creation and its rename can leave a hidden `.poinav-*.tmp` beside the
-/// target (nothing can clean up after SIGKILL); that is accepted, and nothing else may appear.
+/// the temporary file's creation and its rename can leave a hidden `.poinav-<pid>-*.tmp` beside
+/// the target (nothing can clean up after SIGKILL); nothing else may appear, and the next write
+/// into that folder removes it (its process is gone).
 #[test]
 fn an_interrupted_enrich_never_leaves_a_partial_output() {
     let tmp = tempfile::tempdir().unwrap();
@@ -468,6 +469,7 @@ fn an_interrupted_enrich_never_leaves_a_partial_output() {
         .collect();
     delays.extend([0.5, 0.8, 0.9, 0.95, 1.0, 1.5].map(|f| full.mul_f64(f)));
     let (mut complete, mut absent, mut leftovers) = (0, 0, 0);
+    let mut untidy = Vec::new();
     for (k, delay) in delays.iter().enumerate() {
         let dir = tmp.path().join(format!("run-{k}"));
         std::fs::create_dir(&dir).unwrap();
@@ -494,9 +496,26 @@ fn an_interrupted_enrich_never_leaves_a_partial_output() {
             if f != out {
                 assert!(is_temp(&f), "unexpected file {}", f.display());
                 leftovers += 1;
+                untidy.push(dir.clone());
             }
         }
         assert_eq!(std::fs::read(&input).unwrap(), original);
+    }
+    // Also a planted leftover of a process that no longer exists (pid above Linux's 2^22).
+    let planted = tmp.path().join("planted");
+    std::fs::create_dir(&planted).unwrap();
+    std::fs::write(planted.join(".poinav-99999999-AbC123.tmp"), b"partial").unwrap();
+    untidy.push(planted);
+    untidy.dedup();
+    for dir in &untidy {
+        let out = dir.join("out.ifc");
+        assert!(enrich_cmd(&input, &out).status().unwrap().success());
+        assert_eq!(
+            files_below(dir),
+            [out.clone()],
+            "stale temporary files stay"
+        );
+        assert!(std::fs::read(&out).unwrap() == expected);
     }
     eprintln!(
         "uninterrupted run {full:?}; {complete} complete, {absent} absent, {leftovers} hidden temporary files left by SIGKILL"
