@@ -512,7 +512,7 @@ fn an_interrupted_enrich_never_leaves_a_partial_output() {
         assert!(enrich_cmd(&input, &out).status().unwrap().success());
         assert_eq!(
             files_below(dir),
-            [out.clone()],
+            std::slice::from_ref(&out),
             "stale temporary files stay"
         );
         assert!(std::fs::read(&out).unwrap() == expected);
