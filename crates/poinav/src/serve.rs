@@ -3,6 +3,7 @@
 //! interrupted.
 
 use std::collections::BTreeMap;
+use std::io::Write;
 use std::net::{IpAddr, Ipv4Addr, SocketAddr};
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -228,10 +229,18 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     runtime.block_on(async {
         let bound = poinav_viewer::bind(config, viewer).await?;
         let addr = bound.local_addr();
-        println!("poinav viewer: http://{addr}/");
-        println!("  Robot1: arrow keys, Robot2: W A S D, C: camera; Ctrl+C stops the server");
+        // The server keeps running when nobody reads its output any more (`| head -1`, a
+        // closed terminal): write errors are ignored rather than panicking in println!.
+        let mut out = std::io::stdout();
+        let _ = writeln!(out, "poinav viewer: http://{addr}/");
+        let _ = writeln!(
+            out,
+            "  Robot1: arrow keys, Robot2: W A S D, C: camera; Ctrl+C stops the server"
+        );
+        let _ = out.flush();
         if !addr.ip().is_loopback() {
-            eprintln!(
+            let _ = writeln!(
+                std::io::stderr(),
                 "warning: listening on {}, reachable from the network; WebXR on another device needs HTTPS",
                 addr.ip()
             );

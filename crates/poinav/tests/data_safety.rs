@@ -256,6 +256,45 @@ fn commands(input: &Path, out: &Path, is_demo: bool) -> Vec<(&'static str, Vec<O
     cmds
 }
 
+/// Runs `poinav serve FILE --port 0` until it prints its URL, fetches the GLB and stops it:
+/// the GLB's size, or the exit code when the server does not start.
+fn serve_once(input: &Path) -> Result<usize, i32> {
+    use std::io::{BufRead, BufReader, Read, Write};
+    let mut child = Command::new(env!("CARGO_BIN_EXE_poinav"))
+        .args([os("serve"), os(input), os("--port"), os("0")])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    let mut line = String::new();
+    BufReader::new(child.stdout.take().unwrap())
+        .read_line(&mut line)
+        .unwrap();
+    let Some(addr) = line
+        .trim()
+        .strip_prefix("poinav viewer: http://")
+        .map(|a| a.trim_end_matches('/').to_string())
+    else {
+        return Err(child.wait().unwrap().code().unwrap_or(-1));
+    };
+    let mut s = std::net::TcpStream::connect(&addr).unwrap();
+    write!(
+        s,
+        "GET /api/model.glb HTTP/1.1\r\nHost: {addr}\r\nConnection: close\r\n\r\n"
+    )
+    .unwrap();
+    let mut buf = Vec::new();
+    s.read_to_end(&mut buf).unwrap();
+    child.kill().unwrap();
+    child.wait().unwrap();
+    let body = buf
+        .windows(4)
+        .position(|w| w == b"\r\n\r\n")
+        .map_or(0, |i| i + 4);
+    assert_eq!(&buf[body..body + 4], b"glTF", "{}", input.display());
+    Ok(buf.len() - body)
+}
+
 #[test]
 fn every_command_leaves_read_only_inputs_identical_and_writes_complete_outputs() {
     let tmp = tempfile::tempdir().unwrap();
@@ -299,6 +338,23 @@ fn every_command_leaves_read_only_inputs_identical_and_writes_complete_outputs()
             assert!(!is_temp(f), "stray temporary file {}", f.display());
             assert_complete(f);
         }
+    }
+
+    // serve reads its input, serves it and writes nothing: started on every input, asked for
+    // the building, stopped. Models without spaces have nowhere to put robots: exit 2.
+    for input in &files {
+        let served = serve_once(input);
+        assert!(
+            matches!(served, Ok(n) if n > 1000) || served == Err(2),
+            "serve {}: {served:?}",
+            input.display()
+        );
+        assert_eq!(
+            snapshot(&in_dir),
+            before,
+            "serve changed {}",
+            input.display()
+        );
     }
 
     // simulate on an IFC copy, with the sensors' findings written back to another copy.
