@@ -61,6 +61,15 @@ const vrButton = VRButton.createButton(renderer);
 vrButton.id = 'vr-button';
 view.appendChild(vrButton);
 
+// In VR the headset's floor is y = 0 at the user's feet: stand the user on the storey's floor,
+// beside Robot1 (else at the centre of the view).
+renderer.xr.addEventListener('sessionstart', () => {
+  const pose = liveRobots[0]?.pose;
+  const at = pose ? new THREE.Vector3(pose.x - 1.5, 0, -pose.y) : orbit.target.clone();
+  scene.position.set(-at.x, -elevation, -at.z);
+});
+renderer.xr.addEventListener('sessionend', () => scene.position.set(0, 0, 0));
+
 const scene = new THREE.Scene();
 scene.background = new THREE.Color(BACKGROUND);
 scene.add(new THREE.HemisphereLight(0xffffff, 0x94a3b8, 2.2));
