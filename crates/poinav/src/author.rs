@@ -64,7 +64,7 @@ pub fn demo_building(args: &DemoBuildingArgs) -> anyhow::Result<ExitCode> {
     poinav_ifc::output::write_atomic(&args.output, &bytes)
         .with_context(|| format!("writing {}", args.output.display()))?;
     let layout = spec.layout();
-    println!(
+    outln!(
         "wrote {}: {} rooms and a corridor, {:.2} x {:.2} m inside; Room 2 door {:.2} m, other doors {:.2} m",
         args.output.display(),
         layout.rooms.len(),
@@ -85,7 +85,7 @@ pub fn door_width(args: &DoorWidthArgs) -> anyhow::Result<ExitCode> {
     let old = patch
         .old_width_m
         .map_or("none".to_string(), |w| format!("{w:.3} m"));
-    println!(
+    outln!(
         "door {} ({}): width {} -> {:.3} m; {} profile(s) resized; wrote {}",
         patch.global_id,
         patch.door,
@@ -95,7 +95,7 @@ pub fn door_width(args: &DoorWidthArgs) -> anyhow::Result<ExitCode> {
         args.output.display()
     );
     for w in &patch.warnings {
-        eprintln!("warning: {w}");
+        errln!("warning: {w}");
     }
     Ok(ExitCode::SUCCESS)
 }

@@ -127,7 +127,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     // 4. The three validation scenarios.
     let mut all = true;
     let mut sections = String::new();
-    println!("scenarios:");
+    outln!("scenarios:");
     for (name, text) in SCENARIOS {
         let scenario = Scenario::from_toml(text, &format!("{name}.toml"), out)?;
         let runs = run_scenario(&scenario, None, &out.join(name))?;
@@ -168,9 +168,9 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     let report_path = out.join("report.html");
     write_atomic(&report_path, html.as_bytes())?;
     for s in &steps {
-        println!("{}: {}", s.title, s.detail);
+        outln!("{}: {}", s.title, s.detail);
     }
-    println!(
+    outln!(
         "demo: {} — open {}",
         if all {
             "every expectation holds"

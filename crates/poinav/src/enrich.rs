@@ -212,7 +212,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         }
     }
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&summary)?);
+        outln!("{}", serde_json::to_string_pretty(&summary)?);
     } else {
         print_summary(&summary);
     }
@@ -220,13 +220,18 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
 }
 
 fn print_summary(s: &Summary) {
-    println!(
+    outln!(
         "enriched {} -> {} ({}, unit {} m)",
-        s.input, s.output, s.schema, s.length_unit_m
+        s.input,
+        s.output,
+        s.schema,
+        s.length_unit_m
     );
-    println!(
+    outln!(
         "  {} elements, {} instances added, property sets `{}*`",
-        s.elements, s.instances_added, s.pset_prefix
+        s.elements,
+        s.instances_added,
+        s.pset_prefix
     );
     let join = |m: &BTreeMap<&str, usize>| {
         m.iter()
@@ -234,8 +239,8 @@ fn print_summary(s: &Summary) {
             .collect::<Vec<_>>()
             .join(", ")
     };
-    println!("  roles:       {}", join(&s.roles));
-    println!(
+    outln!("  roles:       {}", join(&s.roles));
+    outln!(
         "  conditional: {}",
         if s.conditional_roles.is_empty() {
             "none".into()
@@ -243,7 +248,7 @@ fn print_summary(s: &Summary) {
             join(&s.conditional_roles)
         }
     );
-    println!(
+    outln!(
         "  rules:       {}",
         s.rules
             .iter()
@@ -252,7 +257,7 @@ fn print_summary(s: &Summary) {
             .join(", ")
     );
     for p in &s.profiles {
-        println!(
+        outln!(
             "  profile {} (needs {:.2} m): doors {}; spaces {}",
             p.name,
             p.min_clearance_width_m,
@@ -260,9 +265,9 @@ fn print_summary(s: &Summary) {
             join(&p.spaces)
         );
     }
-    println!("  corridors found: {}", s.corridors.len());
+    outln!("  corridors found: {}", s.corridors.len());
     for c in &s.corridors {
-        println!(
+        outln!(
             "    {} {} {}  ({})",
             c.guid,
             c.name.as_deref().unwrap_or("-"),

@@ -75,7 +75,7 @@ pub fn run(export: &Export) -> anyhow::Result<ExitCode> {
     }
     .with_context(|| format!("writing {}", args.output.display()))?;
     let triangles: usize = meshes.elements.iter().map(|e| e.mesh.triangles.len()).sum();
-    println!(
+    outln!(
         "wrote {}: {} elements ({} triangles) on {} storeys; {} elements without geometry ({} failed, {} without a representation)",
         args.output.display(),
         meshes.elements.len(),
@@ -104,10 +104,10 @@ pub fn run(export: &Export) -> anyhow::Result<ExitCode> {
         .chain(absent)
         .collect();
     for (id, message) in problems.iter().take(20) {
-        eprintln!("warning: {}", crate::with_id(id, message));
+        errln!("warning: {}", crate::with_id(id, message));
     }
     if problems.len() > 20 {
-        eprintln!(
+        errln!(
             "warning: ... and {} more elements without geometry",
             problems.len() - 20
         );

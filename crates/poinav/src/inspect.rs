@@ -249,7 +249,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     }
     out.flush()?;
     if args.strict && r.diagnostics > 0 {
-        eprintln!(
+        errln!(
             "error: {} diagnostics in {} (--strict)",
             r.diagnostics,
             args.file.display()

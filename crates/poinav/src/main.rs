@@ -1,5 +1,22 @@
 //! The `poinav` command line: make building models (IFC) robot-ready.
 
+/// `println!` for command output. When standard output is closed (`poinav inspect x | head -1`)
+/// the process ends quietly with exit code 0 instead of panicking: whatever reads the output
+/// has seen all it wanted, and output files are complete by the time anything is printed.
+macro_rules! outln {
+    ($($arg:tt)*) => {
+        $crate::stdout_line(format_args!($($arg)*))
+    };
+}
+
+/// `eprintln!` for messages: a closed standard error is ignored.
+macro_rules! errln {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        let _ = writeln!(std::io::stderr(), $($arg)*);
+    }};
+}
+
 mod author;
 mod demo;
 mod enrich;
@@ -64,6 +81,28 @@ pub fn with_id(id: impl std::fmt::Display, message: impl std::fmt::Display) -> S
     }
 }
 
+/// Writes one line to standard output; ends the process (exit 0) when nobody reads it any more.
+pub fn stdout_line(args: std::fmt::Arguments<'_>) {
+    use std::io::Write as _;
+    let mut out = std::io::stdout().lock();
+    if let Err(e) = out.write_fmt(args).and_then(|()| out.write_all(b"\n")) {
+        if e.kind() == std::io::ErrorKind::BrokenPipe {
+            std::process::exit(0);
+        }
+    }
+}
+
+/// True when `e` comes from writing to a closed pipe.
+fn broken_pipe(e: &anyhow::Error) -> bool {
+    use std::io::ErrorKind::BrokenPipe;
+    e.chain().any(|c| {
+        c.downcast_ref::<std::io::Error>()
+            .is_some_and(|io| io.kind() == BrokenPipe)
+            || c.downcast_ref::<serde_json::Error>()
+                .is_some_and(|j| j.io_error_kind() == Some(BrokenPipe))
+    })
+}
+
 /// Exit code for unreadable input, or diagnostics under `--strict`.
 pub const EXIT_BAD_INPUT: u8 = 2;
 
@@ -84,8 +123,10 @@ fn main() -> ExitCode {
     };
     match result {
         Ok(code) => code,
+        // The reader of our standard output stopped early: not an error of ours.
+        Err(e) if broken_pipe(&e) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("error: {e:#}");
+            errln!("error: {e:#}");
             ExitCode::from(EXIT_BAD_INPUT)
         }
     }

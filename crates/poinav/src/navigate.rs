@@ -97,7 +97,7 @@ fn building(file: &Path, profile: &RobotProfile) -> anyhow::Result<(Building, Ve
 
 fn print_warnings(warnings: &[String]) {
     for w in warnings {
-        eprintln!("warning: {w}");
+        errln!("warning: {w}");
     }
 }
 
@@ -112,20 +112,24 @@ pub fn route(args: &RouteArgs) -> anyhow::Result<ExitCode> {
     match nav.route(&from, &to) {
         Ok(r) => {
             if args.json {
-                println!("{}", serde_json::to_string_pretty(&r)?);
+                outln!("{}", serde_json::to_string_pretty(&r)?);
             } else {
-                println!(
+                outln!(
                     "{} -> {} for {}: {:.2} m, {:.1} s",
-                    r.from, r.to, r.profile, r.length_m, r.time_s
+                    r.from,
+                    r.to,
+                    r.profile,
+                    r.length_m,
+                    r.time_s
                 );
                 for d in &r.doors {
-                    println!("  through {}", d.name.as_deref().unwrap_or(&d.id));
+                    outln!("  through {}", d.name.as_deref().unwrap_or(&d.id));
                 }
             }
             Ok(ExitCode::SUCCESS)
         }
         Err(e) => {
-            eprintln!("error: {e}");
+            errln!("error: {e}");
             Ok(ExitCode::from(1))
         }
     }
@@ -170,18 +174,18 @@ pub fn audit(args: &AuditArgs) -> anyhow::Result<ExitCode> {
             .with_context(|| format!("writing {}", args.output.display()))?;
     }
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&report.to_json())?);
+        outln!("{}", serde_json::to_string_pretty(&report.to_json())?);
     } else {
         for p in &report.profiles {
             let [full, restricted, blocked, pending] = p.door_counts();
             let (reachable, unreachable) = p.space_counts();
-            println!(
+            outln!(
                 "{}: doors {full} full, {restricted} restricted, {blocked} blocked, {pending} pending; spaces {reachable} reachable, {unreachable} not",
                 p.profile
             );
             for t in &p.transitions {
                 if t.status == poinav_poi::AccessibilityStatus::PendingValidation {
-                    println!(
+                    outln!(
                         "  {} {} is PENDING_VALIDATION: {}",
                         t.kind,
                         t.name.as_deref().unwrap_or(&t.id),
@@ -190,7 +194,7 @@ pub fn audit(args: &AuditArgs) -> anyhow::Result<ExitCode> {
                 }
             }
         }
-        println!(
+        outln!(
             "wrote {} and {} more files in {}",
             args.output.display(),
             files.len().saturating_sub(1),
@@ -199,7 +203,7 @@ pub fn audit(args: &AuditArgs) -> anyhow::Result<ExitCode> {
     }
     let failures = report.unreachable_required(&args.require_reachable);
     for f in &failures {
-        eprintln!("error: {f}");
+        errln!("error: {f}");
     }
     Ok(if failures.is_empty() {
         ExitCode::SUCCESS
@@ -215,7 +219,7 @@ pub fn nav2(args: &Nav2Args) -> anyhow::Result<ExitCode> {
     print_warnings(&warnings);
     let summary =
         poinav_nav::write_bundle(&building, &profile, &Nav2Options::default(), &args.output)?;
-    println!(
+    outln!(
         "wrote a Nav2 bundle for {} to {}: {:?}",
         profile.name,
         args.output.display(),

@@ -68,7 +68,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     );
     poinav_ifc::output::write_atomic(&args.output, svg.as_bytes())
         .with_context(|| format!("writing {}", args.output.display()))?;
-    println!(
+    outln!(
         "wrote {}: storey {} ({} items, {} doors, {} problems)",
         args.output.display(),
         plan.storey_name.as_deref().unwrap_or("-"),
@@ -82,7 +82,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         } else {
             " (left out)"
         };
-        eprintln!("warning: {}{fallback}", crate::with_id(p.product, &p.error));
+        errln!("warning: {}{fallback}", crate::with_id(p.product, &p.error));
     }
     Ok(ExitCode::SUCCESS)
 }

@@ -81,7 +81,7 @@ pub fn report(name: &str, runs: &[VariantRun]) -> bool {
             None => name.to_string(),
         };
         for j in &r.outcome.judged {
-            println!(
+            outln!(
                 "  {label:<28} {:<22} {}  measured {}",
                 j.kind,
                 if j.pass { "PASS" } else { "FAIL" },
@@ -119,10 +119,10 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
             editor
                 .write(&path)
                 .with_context(|| format!("writing {}", path.display()))?;
-            println!("wrote sensor findings to {}", path.display());
+            outln!("wrote sensor findings to {}", path.display());
         }
     }
-    println!("outputs in {}", args.output.display());
+    outln!("outputs in {}", args.output.display());
     Ok(if passed {
         ExitCode::SUCCESS
     } else {

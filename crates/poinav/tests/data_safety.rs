@@ -601,3 +601,24 @@ fn enrich_writes_no_output_when_another_output_cannot_be_written() {
     );
     assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
 }
+
+/// `poinav inspect x --json | head -c 10`: the reader stops early; poinav ends quietly with exit
+/// code 0, no panic (println! panics on a closed pipe).
+#[test]
+fn a_closed_stdout_ends_the_command_quietly() {
+    use std::io::Read;
+    let file = common::shared().join("ifc/synthetic-merged-office-duplex-ifc2x3.ifc");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_poinav"))
+        .args([os("inspect"), os(&file), os("--json")])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut head = [0u8; 10];
+    child.stdout.take().unwrap().read_exact(&mut head).unwrap();
+    assert_eq!(head[0], b'{');
+    let out = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert_eq!(out.status.code(), Some(0), "{stderr}");
+}
