@@ -205,7 +205,7 @@ async function loadBuilding(info) {
     const centre = box.getCenter(new THREE.Vector3());
     const size = box.getSize(new THREE.Vector3()).length();
     orbit.target.copy(centre);
-    perspective.position.copy(centre).add(new THREE.Vector3(0.25, 0.85, 0.45).normalize().multiplyScalar(size * 1.1));
+    perspective.position.copy(centre).add(new THREE.Vector3(0.62, 0.75, 0.22).normalize().multiplyScalar(size * 1.0));
     perspective.near = Math.max(0.01, size / 2000);
     perspective.far = size * 20;
     perspective.updateProjectionMatrix();
