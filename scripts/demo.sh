@@ -37,3 +37,5 @@ echo
 "$bin" enrich "$shared/ifc/office-a.ifc" -o "$out/office-a.poi.ifc" | head -12
 echo
 echo "demo: report in ${out%/corpus}/report.html, corpus outputs in $out"
+echo "demo: drive the robots in the browser with"
+echo "  $bin serve --scenario crates/poinav-sim/scenarios/drive.toml   # then open http://127.0.0.1:8080/"
