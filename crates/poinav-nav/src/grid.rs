@@ -96,6 +96,10 @@ pub struct GridDoor {
     /// The passage's frame (`None` when the door has no usable ring).
     #[serde(skip)]
     pub frame: Option<PassageFrame>,
+    /// Half the width of the passage carved for it (the clear width when the lining narrows
+    /// the ring), metres; `None` without a frame.
+    #[serde(skip)]
+    pub passage_half_width_m: Option<f64>,
 }
 
 /// A storey rasterised for one robot profile.
@@ -349,10 +353,12 @@ impl OccupancyGrid {
             } else {
                 CellState::Occupied
             };
+            let mut passage_half_width_m = None;
             if let Some(f) = frame {
                 let clear = d.clear_width_m;
                 let narrower =
                     clear.is_finite() && clear > 0.0 && clear < 2.0 * f.half_width - 1e-6;
+                passage_half_width_m = Some(if narrower { clear / 2.0 } else { f.half_width });
                 if narrower {
                     // The lining beside the clear passage is solid.
                     let lining = (2.0 * f.half_width - clear) / 4.0;
@@ -381,6 +387,7 @@ impl OccupancyGrid {
                 reason,
                 open,
                 frame,
+                passage_half_width_m,
             });
         }
 
@@ -510,7 +517,7 @@ impl NavGrid {
         let d2 = distance_transform(&occupancy);
         let res = occupancy.resolution_m;
         let half = res / 2.0;
-        let clearance_m = d2
+        let mut clearance_m: Vec<f32> = d2
             .iter()
             .map(|&d| {
                 if d.is_finite() {
@@ -520,6 +527,7 @@ impl NavGrid {
                 }
             })
             .collect();
+        door_clearance(&occupancy, &mut clearance_m);
         NavGrid::with_clearance(occupancy, clearance_m, profile, options)
     }
 
@@ -680,6 +688,59 @@ pub const NEIGHBOURS: [(i64, i64); 8] = [
     (1, -1),
     (-1, -1),
 ];
+
+/// How far beyond an open door's own depth its passage is taken to continue through the wall
+/// (walls are often thicker than the door's frame), metres.
+const PASSAGE_REACH_M: f64 = 0.5;
+
+/// Through an open door the clearance is known exactly: half the passage width less the
+/// distance from its axis, within the passage and the wall opening around it. The raster's
+/// clearance is measured to cell edges and the jambs are rasterised by cell centres, so it can
+/// be short by up to a cell, enough to close a door only a few centimetres wider than the robot.
+/// There the exact value is used, but never more than a cell above the raster's, so anything
+/// else standing in the way still counts.
+fn door_clearance(g: &OccupancyGrid, clearance: &mut [f32]) {
+    let res = g.resolution_m;
+    for d in g.doors.iter().filter(|d| d.open) {
+        let (Some(f), Some(half)) = (d.frame, d.passage_half_width_m) else {
+            continue;
+        };
+        let reach = f.half_depth + PASSAGE_REACH_M;
+        let corners = [-1.0, 1.0]
+            .map(|a| [-1.0, 1.0].map(|n| f.center + f.axis * (a * half) + f.normal * (n * reach)));
+        let (lo, hi) = corners.iter().flatten().fold(
+            (DVec2::splat(f64::MAX), DVec2::splat(f64::MIN)),
+            |(lo, hi), p| (lo.min(*p), hi.max(*p)),
+        );
+        let cell = |p: DVec2| ((p - g.origin) / res).floor();
+        let (a, b) = (cell(lo).max(DVec2::ZERO), cell(hi));
+        if !(b.x >= 0.0 && b.y >= 0.0) {
+            continue;
+        }
+        let (c1, r1) = (
+            (b.x as usize).min(g.width - 1),
+            (b.y as usize).min(g.height - 1),
+        );
+        for r in a.y as usize..=r1 {
+            for c in a.x as usize..=c1 {
+                let i = r * g.width + c;
+                if g.cells[i] != CellState::Free {
+                    continue;
+                }
+                let q = g.center(i) - f.center;
+                let (lateral, depth) = (q.dot(f.axis).abs(), q.dot(f.normal).abs());
+                if lateral > half || depth > reach {
+                    continue;
+                }
+                let exact = half - lateral;
+                let raster = f64::from(clearance[i]);
+                if exact > raster {
+                    clearance[i] = exact.min(raster + res) as f32;
+                }
+            }
+        }
+    }
+}
 
 /// Squared Euclidean distance (in cells) from every cell's centre to the nearest occupied
 /// cell's centre: Felzenszwalb and Huttenlocher's exact transform, two 1D passes, O(n).

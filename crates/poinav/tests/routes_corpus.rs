@@ -203,9 +203,9 @@ fn measure(file: &str, options: &NavOptions, cache: &mut Cache) -> Measured {
             continue;
         }
         if !nav.grid_passable[sides.node] {
-            // Narrower than the robot plus a grid cell: the robot's centre finds no row of
-            // cells through it. Then either another way joins the two spaces or the route's
-            // error names this door.
+            // Wider than the robot by less than a cell: no row of cell centres may run close
+            // enough to the door's axis. Then either another way joins the two spaces or the
+            // route's error names this door.
             let d = &building.floors[sides.floor].doors[sides.door];
             let width = d.clear_width_m;
             marginal.push(format!(
@@ -213,7 +213,7 @@ fn measure(file: &str, options: &NavOptions, cache: &mut Cache) -> Measured {
                 d.name.as_deref().unwrap_or(&d.id)
             ));
             assert!(
-                width - profile.width_m < 2.0 * options.grid.resolution_m,
+                width - profile.width_m <= options.grid.resolution_m + 1e-9,
                 "{file}: door {:?} {width} m is closed in the grid",
                 d.name
             );
@@ -296,12 +296,13 @@ fn check(file: &str, min_door_pairs: usize) {
         "{file}, lengths only: {} pairs of spaces joined by an accessible interior door ({} such doors are FULL_ACCESS, the others RESTRICTED), {} far pairs; leg length / shortest path {:.4} to {:.4}",
         m.door_pairs, m.full_access, m.far_pairs, m.best, m.worst
     );
-    if !m.marginal.is_empty() {
-        println!(
-            "{file}: doors too narrow for the robot's centre at this resolution: {}",
-            m.marginal.join(", ")
-        );
-    }
+    // Every accessible door of these buildings is open in the grid (the duplex's 0.762 m doors
+    // for the 0.70 m robot included, since the passage clearance is exact).
+    assert!(
+        m.marginal.is_empty(),
+        "{file}: doors too narrow for the robot's centre at this resolution: {}",
+        m.marginal.join(", ")
+    );
     assert!(
         m.failures.is_empty(),
         "{} failures:\n{}",
