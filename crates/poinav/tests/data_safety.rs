@@ -256,43 +256,18 @@ fn commands(input: &Path, out: &Path, is_demo: bool) -> Vec<(&'static str, Vec<O
     cmds
 }
 
-/// Runs `poinav serve FILE --port 0` until it prints its URL, fetches the GLB and stops it:
-/// the GLB's size, or the exit code when the server does not start.
+/// `poinav serve FILE`, asked for the building, then stopped: the GLB's size, or the exit
+/// code when the server does not start.
 fn serve_once(input: &Path) -> Result<usize, i32> {
-    use std::io::{BufRead, BufReader, Read, Write};
-    let mut child = Command::new(env!("CARGO_BIN_EXE_poinav"))
-        .args([os("serve"), os(input), os("--port"), os("0")])
-        .stdout(Stdio::piped())
-        .stderr(Stdio::null())
-        .spawn()
-        .unwrap();
-    let mut line = String::new();
-    BufReader::new(child.stdout.take().unwrap())
-        .read_line(&mut line)
-        .unwrap();
-    let Some(addr) = line
-        .trim()
-        .strip_prefix("poinav viewer: http://")
-        .map(|a| a.trim_end_matches('/').to_string())
-    else {
-        return Err(child.wait().unwrap().code().unwrap_or(-1));
-    };
-    let mut s = std::net::TcpStream::connect(&addr).unwrap();
-    write!(
-        s,
-        "GET /api/model.glb HTTP/1.1\r\nHost: {addr}\r\nConnection: close\r\n\r\n"
-    )
-    .unwrap();
-    let mut buf = Vec::new();
-    s.read_to_end(&mut buf).unwrap();
-    child.kill().unwrap();
-    child.wait().unwrap();
-    let body = buf
-        .windows(4)
-        .position(|w| w == b"\r\n\r\n")
-        .map_or(0, |i| i + 4);
-    assert_eq!(&buf[body..body + 4], b"glTF", "{}", input.display());
-    Ok(buf.len() - body)
+    let server = common::serve(&[input.as_os_str()], Path::new("."))?;
+    let (status, glb) = common::http_get(&server.addr, "/api/model.glb");
+    assert_eq!(
+        (status, &glb[..4]),
+        (200, &b"glTF"[..]),
+        "{}",
+        input.display()
+    );
+    Ok(glb.len())
 }
 
 #[test]

@@ -6,28 +6,16 @@
 //! /usr/bin/chromium (tests/js/setup.sh installs them). With POINAV_UPDATE_SCREENSHOT=1 the
 //! screenshot replaces docs/viewer.png (the README's).
 
-use std::io::{BufRead, BufReader};
-use std::path::{Path, PathBuf};
-use std::process::{Child, Command, Stdio};
+mod common;
+
+use std::ffi::OsStr;
+use std::process::Command;
 
 use serde_json::Value;
 
-fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
-struct Server(Child);
-
-impl Drop for Server {
-    fn drop(&mut self) {
-        let _ = self.0.kill();
-        let _ = self.0.wait();
-    }
-}
-
 #[test]
 fn viewer_in_chromium() {
-    let root = root();
+    let root = common::root();
     let bin = env!("CARGO_BIN_EXE_poinav");
     let tmp = tempfile::tempdir().unwrap();
     let sim = Command::new(bin)
@@ -47,28 +35,15 @@ fn viewer_in_chromium() {
     );
     let trace = tmp.path().join("separation/trace.jsonl");
 
-    let mut child = Command::new(bin)
-        .args([
-            "serve",
-            "--scenario",
-            "crates/poinav-sim/scenarios/drive.toml",
-            "--port",
-            "0",
-        ])
-        .current_dir(&root)
-        .stdout(Stdio::piped())
-        .spawn()
-        .unwrap();
-    let mut first = String::new();
-    BufReader::new(child.stdout.take().unwrap())
-        .read_line(&mut first)
-        .unwrap();
-    let _server = Server(child);
-    let url = first
-        .trim()
-        .strip_prefix("poinav viewer: ")
-        .unwrap_or_else(|| panic!("unexpected first line {first:?}"))
-        .to_string();
+    let server = common::serve(
+        &[
+            OsStr::new("--scenario"),
+            OsStr::new("crates/poinav-sim/scenarios/drive.toml"),
+        ],
+        &root,
+    )
+    .expect("poinav serve starts");
+    let url = format!("http://{}/", server.addr);
     assert!(url.starts_with("http://127.0.0.1:"), "{url}");
 
     let out = tmp.path().join("e2e");

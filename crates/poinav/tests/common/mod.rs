@@ -78,3 +78,64 @@ pub fn poinav(args: &[&std::ffi::OsStr]) -> (i32, String, String) {
         String::from_utf8_lossy(&out.stderr).into_owned(),
     )
 }
+
+/// A running `poinav serve`, stopped when dropped.
+pub struct Served {
+    child: std::process::Child,
+    /// `127.0.0.1:PORT`.
+    pub addr: String,
+}
+
+impl Drop for Served {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
+/// Starts `poinav serve ARGS --port 0` in `dir` and waits for the URL it prints; the exit
+/// code when it stops without serving. Its standard output is closed after that line (the
+/// server must keep running).
+pub fn serve(args: &[&std::ffi::OsStr], dir: &Path) -> Result<Served, i32> {
+    use std::io::BufRead;
+    let mut child = Command::new(env!("CARGO_BIN_EXE_poinav"))
+        .arg("serve")
+        .args(args)
+        .args(["--port", "0"])
+        .current_dir(dir)
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .expect("poinav runs");
+    let mut line = String::new();
+    std::io::BufReader::new(child.stdout.take().unwrap())
+        .read_line(&mut line)
+        .unwrap();
+    match line.trim().strip_prefix("poinav viewer: http://") {
+        Some(addr) => Ok(Served {
+            addr: addr.trim_end_matches('/').to_string(),
+            child,
+        }),
+        None => Err(child.wait().unwrap().code().unwrap_or(-1)),
+    }
+}
+
+/// One HTTP/1.1 GET of `path` (sent as written, not normalised): status and body.
+pub fn http_get(addr: &str, path: &str) -> (u16, Vec<u8>) {
+    use std::io::{Read, Write};
+    let mut s = std::net::TcpStream::connect(addr).unwrap();
+    write!(
+        s,
+        "GET {path} HTTP/1.1\r\nHost: {addr}\r\nConnection: close\r\n\r\n"
+    )
+    .unwrap();
+    let mut buf = Vec::new();
+    s.read_to_end(&mut buf).unwrap();
+    let end = buf
+        .windows(4)
+        .position(|w| w == b"\r\n\r\n")
+        .expect("an HTTP response");
+    let head = String::from_utf8_lossy(&buf[..end]).to_string();
+    let status = head.split_whitespace().nth(1).unwrap().parse().unwrap();
+    (status, buf[end + 4..].to_vec())
+}
