@@ -11,6 +11,28 @@ fn run(args: &[&OsStr]) -> (i32, String, String) {
     common::poinav(args)
 }
 
+/// `poinav route FILE --from A --to B --json`: the doors passed (names) and the route JSON.
+fn route_json(file: &Path, from: &str, to: &str) -> (Vec<String>, serde_json::Value) {
+    let (code, out, err) = run(&[
+        OsStr::new("route"),
+        file.as_os_str(),
+        OsStr::new("--from"),
+        OsStr::new(from),
+        OsStr::new("--to"),
+        OsStr::new(to),
+        OsStr::new("--json"),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let route: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let doors = route["doors"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|d| d["name"].as_str().unwrap().to_string())
+        .collect();
+    (doors, route)
+}
+
 fn demo(dir: &Path) -> std::path::PathBuf {
     let path = dir.join("demo.ifc");
     let (code, _, err) = run(&[
@@ -26,23 +48,7 @@ fn demo(dir: &Path) -> std::path::PathBuf {
 fn routes_pass_the_expected_doors_and_a_narrowed_door_is_named_as_the_blocker() {
     let dir = tempfile::tempdir().unwrap();
     let building = demo(dir.path());
-    let (code, out, err) = run(&[
-        OsStr::new("route"),
-        building.as_os_str(),
-        OsStr::new("--from"),
-        OsStr::new("Room 1"),
-        OsStr::new("--to"),
-        OsStr::new("Room 6"),
-        OsStr::new("--json"),
-    ]);
-    assert_eq!(code, 0, "{err}");
-    let route: serde_json::Value = serde_json::from_str(&out).unwrap();
-    let doors: Vec<&str> = route["doors"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|d| d["name"].as_str().unwrap())
-        .collect();
+    let (doors, route) = route_json(&building, "Room 1", "Room 6");
     assert_eq!(doors, ["Door Room 1", "Door Room 6"]);
     // Room 1 (0..4, 0..4) to Room 6 (8.4..12.4, 6.8..10.8) through the corridor: 12 to 16 m.
     let length = route["length_m"].as_f64().unwrap();
@@ -226,23 +232,7 @@ fn routes_start_outside_and_the_cli_warns_of_what_limits_navigation() {
     // FZK-Haus: from outside through the front door (its space boundary: the hall, Flur, and
     // the outside) into the office (Buero, space 2).
     let fzk = corpus_file("fzk-haus-ifc4.ifc");
-    let (code, out, err) = run(&[
-        OsStr::new("route"),
-        fzk.as_os_str(),
-        OsStr::new("--from"),
-        OsStr::new("outside"),
-        OsStr::new("--to"),
-        OsStr::new("2"),
-        OsStr::new("--json"),
-    ]);
-    assert_eq!(code, 0, "{err}");
-    let route: serde_json::Value = serde_json::from_str(&out).unwrap();
-    let doors: Vec<&str> = route["doors"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|d| d["name"].as_str().unwrap())
-        .collect();
+    let (doors, route) = route_json(&fzk, "outside", "2");
     assert_eq!(doors, ["Haustuer", "Innentuer-3"]);
     // The apron in front of the door is 1 m deep: the route starts half a metre out.
     let length = route["length_m"].as_f64().unwrap();
