@@ -7,9 +7,7 @@ use std::process::ExitCode;
 
 use anyhow::Context;
 use poinav_ifc::Model;
-use poinav_poi::{
-    classify, AccessibilityStatus, Classification, RobotProfile, RuleSet, WriteOptions,
-};
+use poinav_poi::{classify, AccessibilityStatus, Classification, RobotProfile, WriteOptions};
 use serde::Serialize;
 
 /// Arguments of `poinav enrich`.
@@ -117,10 +115,7 @@ fn progress(enabled: bool) -> indicatif::ProgressBar {
 
 /// Runs `poinav enrich`.
 pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
-    let rules = match &args.rules {
-        Some(path) => RuleSet::with_user_file(path)?,
-        None => RuleSet::defaults(),
-    };
+    let rules = crate::rules(args.rules.as_deref())?;
     let profiles = if args.profiles.is_empty() {
         vec![RobotProfile::paper()]
     } else {

@@ -7,7 +7,7 @@ use std::process::ExitCode;
 use anyhow::Context;
 use poinav_export::SceneInput;
 use poinav_ifc::{spatial, units, Model};
-use poinav_poi::{classify, RobotProfile, RuleSet};
+use poinav_poi::classify;
 
 /// Export formats.
 #[derive(Debug, clap::Subcommand)]
@@ -54,14 +54,8 @@ pub fn run(export: &Export) -> anyhow::Result<ExitCode> {
     let classification = if args.no_poi {
         None
     } else {
-        let rules = match &args.rules {
-            Some(p) => RuleSet::with_user_file(p)?,
-            None => RuleSet::defaults(),
-        };
-        let profile = match &args.profile {
-            Some(p) => RobotProfile::load(p)?,
-            None => RobotProfile::paper(),
-        };
+        let rules = crate::rules(args.rules.as_deref())?;
+        let profile = crate::profile(args.profile.as_deref())?;
         Some(classify(&model, &rules, &profile))
     };
     let scene = SceneInput {

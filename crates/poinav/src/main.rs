@@ -92,6 +92,22 @@ pub fn stdout_line(args: std::fmt::Arguments<'_>) {
     }
 }
 
+/// The robot profile at `path`, else the paper's robot.
+pub fn profile(path: Option<&std::path::Path>) -> anyhow::Result<poinav_poi::RobotProfile> {
+    Ok(match path {
+        Some(p) => poinav_poi::RobotProfile::load(p)?,
+        None => poinav_poi::RobotProfile::paper(),
+    })
+}
+
+/// The default POI rules, extended by the rule file at `path` when given.
+pub fn rules(path: Option<&std::path::Path>) -> anyhow::Result<poinav_poi::RuleSet> {
+    Ok(match path {
+        Some(p) => poinav_poi::RuleSet::with_user_file(p)?,
+        None => poinav_poi::RuleSet::defaults(),
+    })
+}
+
 /// True when `e` comes from writing to a closed pipe.
 fn broken_pipe(e: &anyhow::Error) -> bool {
     use std::io::ErrorKind::BrokenPipe;

@@ -63,13 +63,6 @@ pub struct Nav2Args {
     profile: Option<PathBuf>,
 }
 
-fn profile(path: Option<&Path>) -> anyhow::Result<RobotProfile> {
-    Ok(match path {
-        Some(p) => RobotProfile::load(p)?,
-        None => RobotProfile::paper(),
-    })
-}
-
 /// The building's storeys as floors, classified for `profile`, and warnings: the stairs,
 /// ramps and lifts left out (with why) and what else limits navigation
 /// ([`Building::diagnostics`]).
@@ -103,7 +96,7 @@ fn print_warnings(warnings: &[String]) {
 
 /// Runs `poinav route`.
 pub fn route(args: &RouteArgs) -> anyhow::Result<ExitCode> {
-    let profile = profile(args.profile.as_deref())?;
+    let profile = crate::profile(args.profile.as_deref())?;
     let (building, warnings) = building(&args.file, &profile)?;
     print_warnings(&warnings);
     let nav = Navigator::new(&building, &profile, &NavOptions::default())?;
@@ -214,7 +207,7 @@ pub fn audit(args: &AuditArgs) -> anyhow::Result<ExitCode> {
 
 /// Runs `poinav export nav2`.
 pub fn nav2(args: &Nav2Args) -> anyhow::Result<ExitCode> {
-    let profile = profile(args.profile.as_deref())?;
+    let profile = crate::profile(args.profile.as_deref())?;
     let (building, warnings) = building(&args.file, &profile)?;
     print_warnings(&warnings);
     let summary =

@@ -8,7 +8,7 @@ use anyhow::Context;
 use poinav_export::plan_svg::{to_svg, SvgOptions};
 use poinav_geom::{floor_plans, PlanOptions};
 use poinav_ifc::Model;
-use poinav_poi::{classify, RobotProfile, RuleSet};
+use poinav_poi::{classify, RuleSet};
 
 /// Arguments of `poinav plan`.
 #[derive(Debug, clap::Args)]
@@ -44,10 +44,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     );
     let plan =
         poinav_sim::ifc_floor::pick(&plans, args.storey.as_deref()).map_err(anyhow::Error::msg)?;
-    let profile = match &args.profile {
-        Some(p) => RobotProfile::load(p)?,
-        None => RobotProfile::paper(),
-    };
+    let profile = crate::profile(args.profile.as_deref())?;
     let c = classify(&model, &RuleSet::defaults(), &profile);
     let door_status: HashMap<String, String> = c
         .elements

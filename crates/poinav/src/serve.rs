@@ -13,7 +13,7 @@ use poinav_export::SceneInput;
 use poinav_geom::{floor_plans_with_meshes, mesh_model, PlanOptions};
 use poinav_ifc::property::{property_sets, PropertyValue, Scalar, TypedScalar};
 use poinav_ifc::{spatial, units, Model};
-use poinav_poi::{classify, Classification, RobotProfile, RuleSet};
+use poinav_poi::{classify, Classification};
 use poinav_sim::{RobotSetup, Scenario, SimOptions};
 use poinav_viewer::{ElementInfo, ServerConfig, Viewer};
 
@@ -161,14 +161,8 @@ fn scenario_robots(s: &Scenario) -> (Vec<RobotSetup>, SimOptions) {
 
 /// Runs `poinav serve`.
 pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
-    let profile = match &args.profile {
-        Some(p) => RobotProfile::load(p)?,
-        None => RobotProfile::paper(),
-    };
-    let rules = match &args.rules {
-        Some(p) => RuleSet::with_user_file(p)?,
-        None => RuleSet::defaults(),
-    };
+    let profile = crate::profile(args.profile.as_deref())?;
+    let rules = crate::rules(args.rules.as_deref())?;
     let scenario = args.scenario.as_deref().map(Scenario::load).transpose()?;
     let (model, classification, title) = match (&args.file, &scenario) {
         (Some(file), _) => {
