@@ -43,12 +43,18 @@ pub use run::{run, Outcome};
 pub use scenario::Scenario;
 pub use step::{RobotSetup, Sim, SimOptions, DT};
 
-/// The scenarios shipped with the crate (`scenarios/*.toml`): name and file text.
+/// The scenarios shipped with the crate (`scenarios/*.toml`): name and file text. The paper's
+/// three, and one per other coordination protocol (YIELD, PRIORITY_PASS).
 pub const SHIPPED: &[(&str, &str)] = &[
     ("doorway", include_str!("../scenarios/doorway.toml")),
     ("separation", include_str!("../scenarios/separation.toml")),
     (
         "wall-following",
         include_str!("../scenarios/wall-following.toml"),
+    ),
+    ("yield", include_str!("../scenarios/yield.toml")),
+    (
+        "priority-pass",
+        include_str!("../scenarios/priority-pass.toml"),
     ),
 ];
