@@ -464,7 +464,9 @@ impl<'m> Editor<'m> {
                 }
             }
         }
-        let data_end = self.model.data_end();
+        // (A readable model has a DATA section, so its end is never before the cursor; kept
+        // safe anyway.)
+        let data_end = self.model.data_end().max(cursor);
         if !inserted {
             match insert_at {
                 Some(at) if at >= cursor => {

@@ -128,6 +128,16 @@ pub(crate) fn scan(bytes: &[u8], mut pos: usize, schema: Schema) -> Result<Scan,
             scan_section(bytes, &mut pos, schema, &mut out, &mut type_cache)?;
             sections += 1;
         } else if rest.starts_with(b"END-ISO-10303-21") {
+            if sections == 0 {
+                return Err((
+                    ReadErrorKind::Syntax(
+                        "the file has no DATA section: `END-ISO-10303-21;` follows the header"
+                            .into(),
+                    ),
+                    pos,
+                    None,
+                ));
+            }
             break;
         } else if rest.is_empty() && sections > 0 {
             out.problems.push((
@@ -336,6 +346,14 @@ mod tests {
         .unwrap();
         assert_eq!(s.instances.len(), 1);
         assert_eq!(s.problems.len(), 3);
+    }
+
+    #[test]
+    fn a_file_without_a_data_section_is_an_error() {
+        // Found by fuzzing enrichment: such a file read as an empty model whose DATA section
+        // had no position, and the editor's insertion point was out of range.
+        let (kind, _, _) = scan(b"END-ISO-10303-21;", 0, Schema::Ifc4).unwrap_err();
+        assert!(matches!(kind, ReadErrorKind::Syntax(ref m) if m.contains("no DATA section")));
     }
 
     #[test]

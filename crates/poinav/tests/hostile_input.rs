@@ -654,3 +654,19 @@ fn a_missing_end_iso_line_is_a_truncation_diagnostic_and_the_model_reads() {
     assert_door(&r, "Door");
     assert_rest_of_model(&r);
 }
+
+#[test]
+fn a_file_without_a_data_section_is_fatal_on_its_end_line() {
+    // Found by fuzzing enrichment: it used to read as an empty model that could not be edited.
+    let text: String = TEMPLATE[..6]
+        .iter()
+        .chain(&TEMPLATE[21..])
+        .map(|l| format!("{l}\n"))
+        .collect();
+    assert!(!text.contains("DATA;"));
+    fatal(
+        "no-data.ifc",
+        text,
+        ":7: syntax error: the file has no DATA section: `END-ISO-10303-21;` follows the header",
+    );
+}
