@@ -1,6 +1,6 @@
 //! The passage through a door in plan: where its clear width lies, along which direction, and
 //! how deep the opening is, from the opening it fills (else its own body), its placement and
-//! its clear width.
+//! its clear width; and the passage through a wall opening no door fills (a doorway).
 //!
 //! The clear width is computed as `poinav-poi` computes it for the accessibility rules:
 //! OverallWidth less twice the LiningThickness of its `IfcDoorLiningProperties` (occurrence
@@ -148,6 +148,92 @@ pub fn door_passage<'m>(
         measured,
         z_range: (footprint.z_min, footprint.z_max),
     })
+}
+
+/// Openings narrower than this (metres) are no passage for anyone (cable and pipe chases).
+pub const MIN_OPENING_PASSAGE_M: f64 = 0.3;
+
+/// The passage through `opening`, an `IfcOpeningElement` that no door or window fills, in its
+/// host `wall`: along the wall's length (the longer side of its footprint's minimum-area
+/// rectangle), as wide as the opening, and as deep as the wall where both overlap (an
+/// opening's cutting volume often reaches far beyond the wall's faces). The clear width is the
+/// opening's width ([`ClearWidthSource::OpeningGeometry`]); `door` and `measured` are the
+/// opening. Errors when the opening or the wall has no footprint.
+pub fn opening_passage<'m>(
+    cache: &mut PlacementCache<'m>,
+    opening: Entity<'m>,
+    wall: Entity<'m>,
+) -> Result<DoorPassage, GeomError> {
+    let hole = crate::footprint::footprint_of(cache, opening)?.footprint;
+    let host = crate::footprint::footprint_of(cache, wall)?.footprint;
+    let degenerate = |id| GeomError::Degenerate {
+        id,
+        reason: "the opening spans no horizontal area",
+    };
+    let wall_rect = polygon::min_area_rectangle(&host.polygon).ok_or(degenerate(wall.id()))?;
+    let hole_rect = polygon::min_area_rectangle(&hole.polygon).ok_or(degenerate(opening.id()))?;
+    let along = wall_rect.direction;
+    let across = along.perp();
+    let origin = hole_rect.center;
+    let extent = |points: &[DVec2], axis: DVec2| {
+        points
+            .iter()
+            .map(|p| (*p - origin).dot(axis))
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), t| {
+                (lo.min(t), hi.max(t))
+            })
+    };
+    let (u0, u1) = extent(&hole.polygon, along);
+    let (mut v0, mut v1) = extent(&hole.polygon, across);
+    // The wall's faces where the opening is: its outline's points within the opening's width.
+    let near: Vec<DVec2> = host
+        .polygon
+        .iter()
+        .copied()
+        .filter(|p| {
+            let u = (*p - origin).dot(along);
+            u >= u0 - 1.0 && u <= u1 + 1.0
+        })
+        .collect();
+    let (w0, w1) = extent(
+        if near.len() >= 2 {
+            &near
+        } else {
+            &host.polygon
+        },
+        across,
+    );
+    if w0.max(v0) < w1.min(v1) {
+        (v0, v1) = (w0.max(v0), w1.min(v1));
+    }
+    if !(u1 - u0 > 1e-6 && v1 - v0 > 1e-6) {
+        return Err(degenerate(opening.id()));
+    }
+    let center = origin + along * (u0 + u1) / 2.0 + across * (v0 + v1) / 2.0;
+    Ok(DoorPassage {
+        door: opening.id(),
+        global_id: opening.global_id().unwrap_or_default(),
+        name: opening.name(),
+        center,
+        along,
+        across,
+        clear_width_m: u1 - u0,
+        clear_width_source: ClearWidthSource::OpeningGeometry,
+        opening_width_m: u1 - u0,
+        depth_m: v1 - v0,
+        measured: opening.id(),
+        z_range: (hole.z_min, hole.z_max),
+    })
+}
+
+/// The openings of `element` that no door or window fills.
+pub fn unfilled_openings<'m>(element: Entity<'m>) -> Vec<Entity<'m>> {
+    element
+        .inverse("HasOpenings")
+        .into_iter()
+        .filter_map(|rel| rel.get_ref("RelatedOpeningElement"))
+        .filter(|o| o.inverse("HasFillings").is_empty())
+        .collect()
 }
 
 /// The clear width of a door or window in metres from its attributes: OverallWidth less twice

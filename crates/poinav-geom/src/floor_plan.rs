@@ -25,7 +25,9 @@ use rayon::prelude::*;
 use rustc_hash::FxHashMap;
 use serde::{Deserialize, Serialize};
 
-use crate::door_passage::{door_passage, DoorPassage};
+use crate::door_passage::{
+    door_passage, opening_passage, unfilled_openings, DoorPassage, MIN_OPENING_PASSAGE_M,
+};
 use crate::element_mesh::{meshed_products, openings_of};
 use crate::error::GeomError;
 use crate::footprint::footprint_of;
@@ -130,6 +132,10 @@ pub struct FloorPlan {
     pub items: Vec<PlanItem>,
     /// The passages of its doors, in file order.
     pub doors: Vec<DoorPassage>,
+    /// The passages through wall openings that no door or window fills (doorways), in file
+    /// order of their walls: openings at least [`MIN_OPENING_PASSAGE_M`] wide that cut the
+    /// wall through the whole band. `door` is the `IfcOpeningElement`.
+    pub openings: Vec<DoorPassage>,
     /// Products drawn from their footprint or not at all, and doors without a passage.
     pub problems: Vec<PlanProblem>,
     /// The box around every item (min, max); `None` for an empty plan.
@@ -287,12 +293,14 @@ pub fn floor_plans_with_meshes(
                 band,
                 items: Vec::new(),
                 doors: Vec::new(),
+                openings: Vec::new(),
                 problems: Vec::new(),
                 bounds: None,
             };
             for d in drawn {
                 plan.items.extend(d.items);
                 plan.doors.extend(d.door);
+                plan.openings.extend(d.openings);
                 plan.problems.extend(d.problems);
             }
             plan.bounds = region::bounds_of(plan.items.iter().flat_map(|i| i.regions.iter()));
@@ -323,6 +331,7 @@ fn standing_on(levels: &[(Entity<'_>, f64)], z: f64) -> Option<usize> {
 struct Drawn {
     items: Vec<PlanItem>,
     door: Option<DoorPassage>,
+    openings: Vec<DoorPassage>,
     problems: Vec<PlanProblem>,
 }
 
@@ -424,8 +433,59 @@ fn draw<'m>(
     }
     if !regions.is_empty() {
         out.items.push(item(kind, regions, source));
+        // A wall that is drawn has a gap at each of its doorways; one that is not (its geometry
+        // failed, or its openings took all of it) has none to speak of.
+        if kind == PlanItemKind::Wall {
+            doorways(cache, product, band, &mut out);
+        }
     }
     out
+}
+
+/// Adds the doorways of `wall`: its openings that no door or window fills, at least
+/// [`MIN_OPENING_PASSAGE_M`] wide, cutting it from the band's bottom to its top (1 cm
+/// tolerance), so that its plan has a gap there.
+fn doorways<'m>(
+    cache: &mut PlacementCache<'m>,
+    wall: Entity<'m>,
+    band: (f64, f64),
+    out: &mut Drawn,
+) {
+    for opening in unfilled_openings(wall) {
+        match opening_passage(cache, opening, wall) {
+            Ok(passage) => {
+                let (z0, z1) = passage.z_range;
+                if passage.clear_width_m < MIN_OPENING_PASSAGE_M
+                    || z0 > band.0 + 0.01
+                    || z1 < band.1 - 0.01
+                {
+                    continue;
+                }
+                let regions: Vec<Region> = passage.passage().into_iter().collect();
+                if regions.is_empty() {
+                    continue;
+                }
+                out.items.push(PlanItem {
+                    product: opening.id(),
+                    global_id: opening.global_id().unwrap_or_default(),
+                    class: opening.type_name().to_string(),
+                    name: opening.name(),
+                    long_name: None,
+                    kind: PlanItemKind::DoorOpening,
+                    regions,
+                    source: PlanSource::Passage,
+                });
+                out.openings.push(passage);
+            }
+            Err(error) => out.problems.push(PlanProblem {
+                product: opening.id(),
+                global_id: opening.global_id().unwrap_or_default(),
+                class: opening.type_name().to_string(),
+                error,
+                fell_back: false,
+            }),
+        }
+    }
 }
 
 /// The footprint of a product as plan regions when its z-range meets the band (stairs and

@@ -7,6 +7,7 @@ mod common;
 use std::collections::BTreeMap;
 
 use glam::DVec2;
+use poinav_geom::door_passage::ClearWidthSource;
 use poinav_geom::region::{self, Region};
 use poinav_geom::{floor_plans, FloorPlan, FootprintMethod, PlanItemKind, PlanOptions, PlanSource};
 use poinav_ifc::{spatial, Model};
@@ -288,6 +289,30 @@ fn office_a_levels() {
     let l2 = &plans[1];
     assert_eq!(l2.items_of(PlanItemKind::Space).count(), 39);
     assert_eq!(l2.doors.len(), 36);
+    // Doorways: on each level one opening no door fills reaches through the band, the lift's
+    // (its doors are an IfcFlowTerminal): 1.232 m along the partition, as deep as the 0.124 m
+    // partition although the opening's box reaches 3.05 m across it (IfcOpenShell: a 3.05 x
+    // 1.23 m box). The other eight unfilled openings are narrower or start above the floor.
+    for (plan, id) in [(l1, 1057), (l2, 1056)] {
+        let ids: Vec<u64> = plan.openings.iter().map(|o| o.door.0).collect();
+        assert_eq!(ids, [id], "{:?}", plan.storey_name);
+        let o = &plan.openings[0];
+        assert!((o.clear_width_m - 1.2319).abs() < 1e-3, "{o:?}");
+        assert!((o.depth_m - 0.124).abs() < 0.005, "{o:?}");
+        assert!(
+            (o.center.x - 23.88).abs() < 0.01 && (o.center.y + 20.725).abs() < 0.01,
+            "{o:?}"
+        );
+        assert!(o.along.y.abs() > 0.999, "along the wall (y): {o:?}");
+        assert_eq!(o.clear_width_source, ClearWidthSource::OpeningGeometry);
+        assert_eq!(
+            plan.items
+                .iter()
+                .filter(|i| i.kind == PlanItemKind::DoorOpening && i.class == "IfcOpeningElement")
+                .count(),
+            1
+        );
+    }
 }
 
 #[test]

@@ -56,6 +56,8 @@ pub struct DoorAudit {
     pub sides_from_space_boundaries: bool,
     /// POI roles.
     pub roles: Vec<Role>,
+    /// An opening without a door (a doorway).
+    pub doorless: bool,
 }
 
 /// A vertical connection as audited.
@@ -209,6 +211,7 @@ pub fn audit_profile(nav: &Navigator<'_>, start: Option<&str>) -> Result<Profile
                 exterior: s.exterior(),
                 zones: s.zones.iter().map(|z| zone_label(s.floor, *z)).collect(),
                 sides_from_space_boundaries: s.from_spaces,
+                doorless: d.doorless,
                 roles: d.roles.clone(),
             }
         })

@@ -41,7 +41,7 @@ impl Building {
             .filter(|f| f.zones.is_empty() && !f.doors.is_empty())
             .map(|f| {
                 format!(
-                    "storey `{}` has {} door{} but no spaces (IfcSpace): its doors join no rooms and lead nowhere outside, so it has no entrance and nothing to route to by name; routes there need points (`x,y@{}`), and only the free space enclosed by walls and doors is mapped",
+                    "storey `{}` has {} door{} but no spaces (IfcSpace): its doors join no rooms, so it has no entrance and nothing to route to by name; routes there need points (`x,y@{}`), and only the free space enclosed by walls and doors and a free apron on each side of every open door are mapped",
                     f.name,
                     f.doors.len(),
                     if f.doors.len() == 1 { "" } else { "s" },
@@ -230,6 +230,7 @@ mod tests {
             min_clearance_width_m: 0.9,
             roles: vec![],
             spaces: None,
+            doorless: false,
         }
     }
 

@@ -60,6 +60,10 @@ pub struct FloorDoor {
     /// unknown, the sides come from geometry alone (see [`crate::graph::door_zones`]).
     #[serde(default)]
     pub spaces: Option<Vec<String>>,
+    /// True for an opening without a door (a doorway; in IFC an `IfcOpeningElement` nothing
+    /// fills): nothing opens or closes there, only its width decides whether a robot fits.
+    #[serde(default)]
+    pub doorless: bool,
 }
 
 /// A space (room, corridor) as a region.

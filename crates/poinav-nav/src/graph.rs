@@ -110,16 +110,23 @@ pub struct DoorSides {
     /// Where the sides come from: `true` from the spaces the door bounds
     /// ([`crate::FloorDoor::spaces`]), `false` from geometry alone.
     pub from_spaces: bool,
+    /// An opening without a door ([`crate::FloorDoor::doorless`]). With a zone on one side
+    /// only it is no entrance: it leads into what the model leaves undescribed (a lift shaft,
+    /// a void, a room without an IfcSpace), not outside.
+    pub doorless: bool,
 }
 
 impl DoorSides {
-    /// True for a door with a zone on one side only: an entrance.
+    /// True for a door with a zone on one side only: an entrance (never a doorway).
     pub fn exterior(&self) -> bool {
-        self.zones[0].is_some() != self.zones[1].is_some()
+        !self.doorless && self.zones[0].is_some() != self.zones[1].is_some()
     }
 
     /// The side (-1 or +1 along the frame's normal) that leads outside, for an exterior door.
     pub fn outside_side(&self) -> Option<f64> {
+        if self.doorless {
+            return None;
+        }
         match self.zones {
             [None, Some(_)] => Some(-1.0),
             [Some(_), None] => Some(1.0),
@@ -324,6 +331,7 @@ impl Topology {
                     node,
                     zones,
                     from_spaces,
+                    doorless: floor.doors[k].doorless,
                 });
             }
         }
@@ -592,6 +600,11 @@ impl Topology {
                             } else {
                                 "geometry"
                             });
+                        v["doorless"] = serde_json::json!(building
+                            .floors
+                            .get(n.floor)
+                            .and_then(|f| f.doors.get(n.index))
+                            .is_some_and(|d| d.doorless));
                         v["status"] = serde_json::json!(statuses[n.id].0);
                         v["reason"] = serde_json::json!(statuses[n.id].1);
                     }

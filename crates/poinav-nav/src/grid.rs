@@ -66,7 +66,8 @@ pub struct GridOptions {
     /// Depth in metres of the entrance apron: the unknown cells outside an open exterior door
     /// (a door with a zone on one side only), as wide as its passage and this deep, are free,
     /// so robots can plan to and from the entrance (default 1.0; 0 leaves the outside wholly
-    /// unknown). The rest of the outside stays unknown.
+    /// unknown). An open door joining no zone (models without spaces) gets one on both sides.
+    /// The rest of the outside stays unknown.
     pub entrance_apron_m: f64,
 }
 
@@ -175,7 +176,9 @@ fn paint(
 
 /// The entrance aprons of `floor` ([`GridOptions::entrance_apron_m`]): in front of every
 /// exterior door (a zone on one side only) that is open for `profile`, outside, a rectangle as
-/// wide as its passage and as deep as the apron.
+/// wide as its passage and as deep as the apron; a door that joins no zone at all (a model
+/// without spaces) gets one on each side, so its passage can be planned through and checked.
+/// Doorways ([`crate::FloorDoor::doorless`]) with a zone on one side only get none.
 pub fn entrance_aprons(
     floor: &Floor,
     profile: &RobotProfile,
@@ -195,17 +198,22 @@ pub fn entrance_aprons(
         let Some(f) = floor.door_frame(k) else {
             continue;
         };
-        let side = match crate::graph::door_zones(floor, k) {
-            [None, Some(_)] => -1.0,
-            [Some(_), None] => 1.0,
-            _ => continue,
+        let sides: &[f64] = match crate::graph::door_zones(floor, k) {
+            // A doorway with a zone on one side leads into the undescribed, not outside.
+            [None, Some(_)] | [Some(_), None] if d.doorless => continue,
+            [None, Some(_)] => &[-1.0],
+            [Some(_), None] => &[1.0],
+            [None, None] => &[-1.0, 1.0],
+            [Some(_), Some(_)] => continue,
         };
-        let front = PassageFrame {
-            center: f.center + f.normal * side * (f.half_depth + apron / 2.0),
-            half_depth: apron / 2.0,
-            ..f
-        };
-        out.push(front.rectangle(f.half_width, apron / 2.0));
+        for side in sides {
+            let front = PassageFrame {
+                center: f.center + f.normal * *side * (f.half_depth + apron / 2.0),
+                half_depth: apron / 2.0,
+                ..f
+            };
+            out.push(front.rectangle(f.half_width, apron / 2.0));
+        }
     }
     out
 }

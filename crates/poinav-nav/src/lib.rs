@@ -44,6 +44,7 @@
 //!         min_clearance_width_m: 0.9,
 //!         roles: vec![],
 //!         spaces: None,
+//!         doorless: false,
 //!     }],
 //!     zones: vec![zone("West", rect(0.0, 0.0, 4.0, 4.0)), zone("East", rect(4.2, 0.0, 8.2, 4.0))],
 //! };

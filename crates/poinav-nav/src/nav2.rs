@@ -400,6 +400,9 @@ pub fn route_graph(nav: &Navigator<'_>, fi: usize, options: &Nav2Options) -> ser
                 let d = &floor.doors[n.index];
                 meta["status"] = json!(nav.status[n.id].0);
                 meta["clear_width_m"] = json!(d.clear_width_m);
+                if d.doorless {
+                    meta["doorless"] = json!(true);
+                }
             }
             NodeKind::Landing => {
                 let c = &nav.building.connections[n.index];
@@ -660,7 +663,8 @@ fn readme(nav: &Navigator<'_>, options: &Nav2Options, storeys: &[StoreyBundle]) 
   the unknown grey 205 as free). Walls, furniture and closed (BLOCKED) doors are occupied, the
   inside of the building free, the outside unknown, except an entrance apron: a free strip
   {apron} m deep and as wide as the door in front of each open entrance (a door with a space
-  on one side only), so a robot can be sent to or from the entrance. It is not inflated:
+  on one side only; on both sides of an open door that joins no space, in models without
+  spaces), so a robot can be sent to or from the entrance. It is not inflated:
   configure Nav2's inflation layer with `inflation_radius` = {infl:.3} m (the robot's circumscribed radius plus its
   clearance margin) and a footprint or `robot_radius` of your robot; poinav planned with a lethal
   radius of {lethal:.3} m (half the robot's width).

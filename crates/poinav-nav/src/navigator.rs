@@ -149,8 +149,14 @@ impl<'a> Navigator<'a> {
         if !passable(*s, self.options.grid.pending_doors_open) {
             format!("{}: {why}", s.label())
         } else if !self.grid_passable[n] {
+            let blockers = self.in_the_way(n);
+            let more = if blockers.is_empty() {
+                String::new()
+            } else {
+                format!("; in the way: {}", blockers.join(", "))
+            };
             format!(
-                "{} ({why}) but no free path through it in the grid inflated by {:.3} m",
+                "{} ({why}) but no free path through it in the grid inflated by {:.3} m{more}",
                 s.label(),
                 self.floors[self.topology.nodes[n].floor]
                     .grid
@@ -159,5 +165,49 @@ impl<'a> Navigator<'a> {
         } else {
             format!("{}: {why}", s.label())
         }
+    }
+
+    /// What stands in the way of door node `n` in the grid (`IfcStairFlight 2Ab2...`, at most
+    /// three, nearest first): the obstacles other than the door's own body that come within
+    /// the robot's lethal radius of the way its centre would take through the passage, from
+    /// three cells before one face to three cells beyond the other. Empty for other nodes.
+    pub fn in_the_way(&self, n: usize) -> Vec<String> {
+        let node = &self.topology.nodes[n];
+        if node.kind != NodeKind::Door {
+            return Vec::new();
+        }
+        let (floor, grid) = (
+            &self.building.floors[node.floor],
+            &self.floors[node.floor].grid,
+        );
+        let Some(door) = grid.occupancy.doors.get(node.index) else {
+            return Vec::new();
+        };
+        let (Some(frame), Some(half_width)) = (door.frame, door.passage_half_width_m) else {
+            return Vec::new();
+        };
+        let res = grid.occupancy.resolution_m;
+        let lethal = grid.lethal_radius_m;
+        let way = frame.rectangle(
+            (half_width - lethal).max(res / 2.0),
+            frame.half_depth + 3.0 * res,
+        );
+        let own = &floor.doors[node.index].id;
+        let mut found: Vec<(f64, String)> = floor
+            .obstacles
+            .iter()
+            .filter(|o| &o.id != own)
+            .filter_map(|o| {
+                let d = o
+                    .rings
+                    .iter()
+                    .map(|r| crate::polygon::ring_distance(r, &way))
+                    .fold(f64::INFINITY, f64::min);
+                (d < lethal - 1e-6).then(|| (d, format!("{} {}", o.class, o.id)))
+            })
+            .collect();
+        found.sort_by(|a, b| a.0.total_cmp(&b.0).then_with(|| a.1.cmp(&b.1)));
+        found.dedup_by(|a, b| a.1 == b.1);
+        found.into_iter().take(3).map(|(_, s)| s).collect()
     }
 }

@@ -53,6 +53,47 @@ pub fn area_distance(ring: &[DVec2], p: DVec2) -> f64 {
     }
 }
 
+/// True when the segments `a`-`b` and `c`-`d` cross or touch.
+fn segments_meet(a: DVec2, b: DVec2, c: DVec2, d: DVec2) -> bool {
+    let side = |p: DVec2, q: DVec2, r: DVec2| (q - p).perp_dot(r - p);
+    let (d1, d2) = (side(c, d, a), side(c, d, b));
+    let (d3, d4) = (side(a, b, c), side(a, b, d));
+    if ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0))
+        && ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0))
+    {
+        return true;
+    }
+    segment_distance(a, c, d) == 0.0
+        || segment_distance(b, c, d) == 0.0
+        || segment_distance(c, a, b) == 0.0
+        || segment_distance(d, a, b) == 0.0
+}
+
+/// The smallest distance between two rings as areas: 0 when they overlap or touch.
+pub fn ring_distance(a: &[DVec2], b: &[DVec2]) -> f64 {
+    if a.is_empty() || b.is_empty() {
+        return f64::INFINITY;
+    }
+    if contains(a, b[0]) || contains(b, a[0]) {
+        return 0.0;
+    }
+    let (n, m) = (a.len(), b.len());
+    let mut best = f64::INFINITY;
+    for i in 0..n {
+        let (p, q) = (a[i], a[(i + 1) % n]);
+        for j in 0..m {
+            let (r, t) = (b[j], b[(j + 1) % m]);
+            if segments_meet(p, q, r, t) {
+                return 0.0;
+            }
+            best = best
+                .min(segment_distance(p, r, t))
+                .min(segment_distance(r, p, q));
+        }
+    }
+    best
+}
+
 /// Signed area (positive when counter-clockwise).
 pub fn signed_area(ring: &[DVec2]) -> f64 {
     let n = ring.len();
@@ -228,6 +269,36 @@ impl PassageFrame {
 
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn ring_distance_is_zero_for_crossing_rings_and_the_gap_otherwise() {
+        let rect = |x0: f64, y0: f64, x1: f64, y1: f64| {
+            vec![
+                DVec2::new(x0, y0),
+                DVec2::new(x1, y0),
+                DVec2::new(x1, y1),
+                DVec2::new(x0, y1),
+            ]
+        };
+        // A plus: no vertex of either inside the other, edges cross.
+        assert_eq!(
+            ring_distance(&rect(-2.0, -0.5, 2.0, 0.5), &rect(-0.5, -2.0, 0.5, 2.0)),
+            0.0
+        );
+        assert_eq!(
+            ring_distance(&rect(0.0, 0.0, 4.0, 4.0), &rect(1.0, 1.0, 2.0, 2.0)),
+            0.0
+        );
+        assert!(
+            (ring_distance(&rect(0.0, 0.0, 1.0, 1.0), &rect(1.25, 0.5, 2.0, 3.0)) - 0.25).abs()
+                < 1e-12
+        );
+        assert!(
+            (ring_distance(&rect(0.0, 0.0, 1.0, 1.0), &rect(2.0, 2.0, 3.0, 3.0)) - 2f64.sqrt())
+                .abs()
+                < 1e-12
+        );
+    }
+
     use super::*;
 
     fn square() -> Vec<DVec2> {

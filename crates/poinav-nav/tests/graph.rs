@@ -56,3 +56,70 @@ fn space_boundaries_decide_the_sides_of_an_ambiguous_door() {
     assert_eq!(names(&floor, door_zones(&floor, 0)), ["Kitchen", "Office"]);
     assert!(!Topology::build(&Building::single(floor)).doors[0].from_spaces);
 }
+
+/// A hall with an opening (no door) in its south wall into a shaft that has no space, and a
+/// real door in its east wall to the outside.
+fn hall_with_doorway() -> Floor {
+    let mut doorway = door(
+        "shaft-opening",
+        "Doorway #7",
+        rect(1.0, -0.2, 2.2, 0.0),
+        1.2,
+    );
+    doorway.doorless = true;
+    Floor {
+        name: "Ground".into(),
+        obstacles: vec![support::wall(
+            "walls",
+            vec![
+                rect(-0.2, -0.2, 1.0, 0.0),
+                rect(2.2, -0.2, 4.2, 0.0),
+                rect(-0.2, 3.0, 4.2, 3.2),
+                rect(-0.2, 0.0, 0.0, 3.0),
+                rect(4.0, 0.0, 4.2, 1.0),
+                rect(4.0, 2.0, 4.2, 3.0),
+            ],
+        )],
+        doors: vec![
+            doorway,
+            door("east", "East door", rect(4.0, 1.0, 4.2, 2.0), 1.0),
+        ],
+        zones: vec![room("hall", "Hall", rect(0.0, 0.0, 4.0, 3.0))],
+        ..Floor::default()
+    }
+}
+
+#[test]
+fn a_doorway_into_an_undescribed_room_is_no_entrance() {
+    use poinav_nav::{CellState, NavOptions, Navigator};
+    use poinav_poi::RobotProfile;
+    let floor = hall_with_doorway();
+    // Both have the hall on one side only; only the door is an entrance.
+    assert_eq!(names(&floor, door_zones(&floor, 0)), ["Hall", "outside"]);
+    let building = Building::single(floor);
+    let topology = Topology::build(&building);
+    let (doorway, east) = (&topology.doors[0], &topology.doors[1]);
+    assert!(doorway.doorless && !doorway.exterior() && doorway.outside_side().is_none());
+    assert!(east.exterior() && !east.doorless);
+    assert_eq!(topology.entrances(), vec![east.node]);
+    // The grid has an apron outside the door but none beyond the doorway (the shaft stays
+    // unknown), so the doorway leads nowhere and the topology JSON says what it is.
+    let nav = Navigator::new(&building, &RobotProfile::paper(), &NavOptions::default()).unwrap();
+    let g = &nav.floors[0].grid.occupancy;
+    let at = |x: f64, y: f64| g.cells[g.cell_of(glam::DVec2::new(x, y)).unwrap()];
+    assert_eq!(at(4.7, 1.5), CellState::Free, "apron outside the east door");
+    assert_eq!(
+        at(1.6, -0.7),
+        CellState::Unknown,
+        "no apron beyond the doorway"
+    );
+    assert_eq!(at(1.6, -0.1), CellState::Free, "the doorway's passage");
+    assert!(!nav.grid_passable[doorway.node]);
+    let json = nav.topology_json();
+    let node = &json["nodes"][doorway.node];
+    assert_eq!(
+        (node["doorless"].as_bool(), node["exterior"].as_bool()),
+        (Some(true), Some(false))
+    );
+    assert_eq!(json["nodes"][east.node]["doorless"].as_bool(), Some(false));
+}

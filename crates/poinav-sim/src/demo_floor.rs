@@ -116,6 +116,7 @@ pub fn demo_floor(
                     }),
                 roles: roles(c),
                 spaces: None,
+                doorless: false,
             });
         }
         gaps.sort_by(|a, b| a.0.total_cmp(&b.0));

@@ -145,6 +145,33 @@ pub fn floor_from_plan(plan: &FloorPlan, classification: &Classification) -> Flo
             min_clearance_width_m: access.map_or(required, |a| a.min_clearance_width_m),
             roles: roles(c),
             spaces: None,
+            doorless: false,
+        });
+    }
+    // Doorways (openings no door fills): open whatever the model says, as wide as they are.
+    for opening in &plan.openings {
+        let Some(ring) = opening.passage().map(|r| r.outer) else {
+            continue;
+        };
+        let c = by_guid.get(opening.global_id.as_str()).copied();
+        let (status, _) =
+            poinav_nav::building::width_status(opening.clear_width_m, &classification.profile);
+        floor.doors.push(FloorDoor {
+            id: opening.global_id.clone(),
+            name: Some(
+                opening
+                    .name
+                    .clone()
+                    .unwrap_or_else(|| format!("Doorway {}", opening.door)),
+            ),
+            ring,
+            center: opening.center,
+            clear_width_m: opening.clear_width_m,
+            status,
+            min_clearance_width_m: required,
+            roles: roles(c),
+            spaces: None,
+            doorless: true,
         });
     }
     floor
@@ -161,7 +188,9 @@ pub fn door_space_boundaries(model: &Model) -> BTreeMap<String, Vec<String>> {
         ) else {
             continue;
         };
-        if !element.is_a("IfcDoor") || !space.is_a("IfcSpace") {
+        if !(element.is_a("IfcDoor") || element.is_a("IfcOpeningElement"))
+            || !space.is_a("IfcSpace")
+        {
             continue;
         }
         let (Some(door), Some(space)) = (element.global_id(), space.global_id()) else {

@@ -4,7 +4,9 @@
 //! storeys) that join storeys, as [`VerticalConnection`]s with one landing per storey served.
 //!
 //! - The storeys a stair or ramp connects come from its meshes' lowest and highest z against
-//!   the storeys' elevations ([`STOREY_TOLERANCE_M`]; railings may rise above the top storey).
+//!   the storeys' elevations ([`STOREY_TOLERANCE_M`]; railings may rise above the top storey);
+//!   one rising through several storeys also stops at each storey in between where it has a
+//!   part at that floor's level.
 //! - A landing is the XY of its vertices at that storey's floor, pushed out of its footprint
 //!   into free space: inside some zone of that storey and clear of its obstacles, else moved
 //!   around the footprint, else the connection is [`Dropped`] with the reason.
@@ -262,6 +264,22 @@ fn stair_or_ramp(
             })?;
         landings.push(Landing { floor, point });
     }
+    // A stair or ramp rising through several storeys stops at each storey in between where it
+    // has a part at that floor's level (a landing there) with free space beside it.
+    let top_landing = landings.pop();
+    for (floor, f) in floors.iter().enumerate() {
+        let e = f.elevation_m;
+        if floor == bottom || floor == top || e <= e0 + 1.0 || e >= e1 - 1.0 {
+            continue;
+        }
+        let Some(at) = near(e, -0.3, 0.3) else {
+            continue;
+        };
+        if let Some(point) = landing_beside(f, &hull.polygon, at, clearance_m, &[]) {
+            landings.push(Landing { floor, point });
+        }
+    }
+    landings.extend(top_landing);
     let rects: Vec<_> = if g.flights.is_empty() {
         vec![hull.min_area_rectangle()]
     } else {
@@ -578,5 +596,83 @@ mod tests {
         ] {
             assert!(!is_lift_name(no), "{no}");
         }
+    }
+
+    /// Three storeys 3 m apart, each one open zone.
+    fn three_storeys(elevations: &[f64]) -> Vec<Floor> {
+        elevations
+            .iter()
+            .enumerate()
+            .map(|(i, &e)| Floor {
+                name: format!("L{i}"),
+                elevation_m: e,
+                zones: vec![poinav_nav::FloorZone {
+                    id: format!("z{i}"),
+                    name: None,
+                    long_name: None,
+                    ring: vec![
+                        DVec2::new(-5.0, -5.0),
+                        DVec2::new(20.0, -5.0),
+                        DVec2::new(20.0, 10.0),
+                        DVec2::new(-5.0, 10.0),
+                    ],
+                    roles: vec![],
+                    coordination: None,
+                }],
+                ..Floor::default()
+            })
+            .collect()
+    }
+
+    #[test]
+    fn a_stair_rising_through_a_storey_lands_on_it_too() {
+        // One straight flight, 1.2 m wide, rising 6 m over 12 m: it passes the middle
+        // storey's floor at x = 6.
+        let positions: Vec<DVec3> = (0..=12)
+            .flat_map(|k| [0.0, 1.2].map(|y| DVec3::new(k as f64, y, k as f64 / 2.0)))
+            .collect();
+        let mesh = ElementMesh {
+            product: EntityId(1),
+            global_id: "stair".into(),
+            class: "IfcStair".into(),
+            name: Some("Stair".into()),
+            storey: None,
+            mesh: poinav_geom::Mesh {
+                positions,
+                triangles: vec![],
+            },
+            color: None,
+        };
+        let group = Group {
+            root: EntityId(1),
+            id: "stair".into(),
+            name: Some("Stair".into()),
+            kind: ConnectionKind::Stair,
+            multi_run: false,
+            members: vec![&mesh],
+            flights: vec![],
+        };
+        let floors = three_storeys(&[0.0, 3.0, 6.0]);
+        let c = stair_or_ramp(&group, &floors, 0.4).unwrap();
+        let on: Vec<usize> = c.landings.iter().map(|l| l.floor).collect();
+        assert_eq!(on, [0, 1, 2], "bottom, the storey passed, top: {c:?}");
+        for l in &c.landings {
+            let p = l.point;
+            let in_footprint = (0.0..=12.0).contains(&p.x) && (0.0..=1.2).contains(&p.y);
+            assert!(
+                !in_footprint && free(&floors[l.floor], p, 0.4, &[]),
+                "{l:?}"
+            );
+        }
+        assert!(
+            c.landings[0].point.x < 0.0 && c.landings[2].point.x > 12.0,
+            "{c:?}"
+        );
+        assert!((c.clear_width_m.unwrap() - 1.2).abs() < 1e-9, "{c:?}");
+        // A storey less than a metre above the foot (a mezzanine step) gets no landing.
+        let floors = three_storeys(&[0.0, 0.8, 6.0]);
+        let c = stair_or_ramp(&group, &floors, 0.4).unwrap();
+        let on: Vec<usize> = c.landings.iter().map(|l| l.floor).collect();
+        assert_eq!(on, [0, 2], "{c:?}");
     }
 }

@@ -46,6 +46,7 @@ fn floor(w: f64, t: f64) -> Floor {
             min_clearance_width_m: 0.9,
             roles: vec![Role::Transition],
             spaces: None,
+            doorless: false,
         }],
         zones: vec![
             FloorZone {

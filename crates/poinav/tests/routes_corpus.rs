@@ -202,6 +202,16 @@ fn measure(file: &str, options: &NavOptions, cache: &mut Cache) -> Measured {
         if a == b {
             continue;
         }
+        if !nav.grid_passable[sides.node] && building.floors[sides.floor].doors[sides.door].doorless
+        {
+            // A doorway with something standing in it (office-a's lift doors): named.
+            assert!(
+                !nav.in_the_way(sides.node).is_empty(),
+                "{file}: {}",
+                nav.closed_reason(sides.node)
+            );
+            continue;
+        }
         if !nav.grid_passable[sides.node] {
             // Wider than the robot by less than a cell: no row of cell centres may run close
             // enough to the door's axis. Then either another way joins the two spaces or the

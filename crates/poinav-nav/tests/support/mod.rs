@@ -49,6 +49,7 @@ pub fn door(id: &str, name: &str, ring: Vec<DVec2>, clear_width_m: f64) -> Floor
         min_clearance_width_m: profile.min_clearance_width(),
         roles,
         spaces: None,
+        doorless: false,
     }
 }
 
