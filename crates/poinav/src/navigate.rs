@@ -6,8 +6,68 @@ use std::process::ExitCode;
 
 use anyhow::Context;
 use poinav_ifc::Model;
-use poinav_nav::{AuditOptions, Building, Nav2Options, NavOptions, Navigator, Place};
+use poinav_nav::{
+    AuditOptions, Building, FurnitureMode, GridOptions, Nav2Options, NavOptions, Navigator, Place,
+};
 use poinav_poi::{classify, RobotProfile, RuleSet};
+
+/// How storeys are rasterised: shared by `route`, `audit` and `export nav2`.
+#[derive(Debug, Clone, clap::Args)]
+pub struct GridArgs {
+    /// Cell size of the occupancy grids, metres.
+    #[arg(long, value_name = "M", default_value_t = 0.05)]
+    resolution: f64,
+    /// Furniture and equipment (A-1 objects): obstacles planned around, or unknown cells left
+    /// to the robot's sensors.
+    #[arg(long, value_enum, default_value_t = Furniture::Obstacle)]
+    furniture: Furniture,
+    /// Doors and transitions PENDING_VALIDATION (no width known) count as closed instead of open.
+    #[arg(long)]
+    pending_closed: bool,
+    /// Depth of the free apron outside each open entrance, metres (0: the outside stays unknown).
+    #[arg(long, value_name = "M", default_value_t = 1.0)]
+    entrance_apron: f64,
+}
+
+/// `--furniture` values.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+enum Furniture {
+    /// Occupied cells, inflated like walls.
+    Obstacle,
+    /// Unknown cells (not entered, not inflated).
+    Unknown,
+}
+
+impl GridArgs {
+    /// The navigation options these arguments give (speeds and inflation by default).
+    fn nav_options(&self) -> anyhow::Result<NavOptions> {
+        if !(self.resolution.is_finite() && (0.005..=1.0).contains(&self.resolution)) {
+            anyhow::bail!(
+                "--resolution must be between 0.005 and 1 m, not {}",
+                self.resolution
+            );
+        }
+        if !(self.entrance_apron.is_finite() && (0.0..=10.0).contains(&self.entrance_apron)) {
+            anyhow::bail!(
+                "--entrance-apron must be between 0 and 10 m, not {}",
+                self.entrance_apron
+            );
+        }
+        Ok(NavOptions {
+            grid: GridOptions {
+                resolution_m: self.resolution,
+                furniture: match self.furniture {
+                    Furniture::Obstacle => FurnitureMode::Obstacle,
+                    Furniture::Unknown => FurnitureMode::Unknown,
+                },
+                pending_doors_open: !self.pending_closed,
+                entrance_apron_m: self.entrance_apron,
+                ..GridOptions::default()
+            },
+            ..NavOptions::default()
+        })
+    }
+}
 
 /// Arguments of `poinav route`.
 #[derive(Debug, clap::Args)]
@@ -26,6 +86,8 @@ pub struct RouteArgs {
     /// Print the route as JSON.
     #[arg(long)]
     json: bool,
+    #[command(flatten)]
+    grid: GridArgs,
 }
 
 /// Arguments of `poinav audit`.
@@ -48,6 +110,8 @@ pub struct AuditArgs {
     /// Print the audit as JSON.
     #[arg(long)]
     json: bool,
+    #[command(flatten)]
+    grid: GridArgs,
 }
 
 /// Arguments of `poinav export nav2`.
@@ -61,6 +125,11 @@ pub struct Nav2Args {
     /// Robot profile (default: the paper's robot).
     #[arg(long)]
     profile: Option<PathBuf>,
+    /// Print what was written as JSON (storeys, map sizes, mask and graph counts, files).
+    #[arg(long)]
+    json: bool,
+    #[command(flatten)]
+    grid: GridArgs,
 }
 
 /// The building's storeys as floors, classified for `profile`, and warnings: the stairs,
@@ -96,10 +165,11 @@ fn print_warnings(warnings: &[String]) {
 
 /// Runs `poinav route`.
 pub fn route(args: &RouteArgs) -> anyhow::Result<ExitCode> {
+    let options = args.grid.nav_options()?;
     let profile = crate::profile(args.profile.as_deref())?;
     let (building, warnings) = building(&args.file, &profile)?;
     print_warnings(&warnings);
-    let nav = Navigator::new(&building, &profile, &NavOptions::default())?;
+    let nav = Navigator::new(&building, &profile, &options)?;
     let from: Place = args.from.parse().map_err(anyhow::Error::msg)?;
     let to: Place = args.to.parse().map_err(anyhow::Error::msg)?;
     match nav.route(&from, &to) {
@@ -130,6 +200,7 @@ pub fn route(args: &RouteArgs) -> anyhow::Result<ExitCode> {
 
 /// Runs `poinav audit`.
 pub fn audit(args: &AuditArgs) -> anyhow::Result<ExitCode> {
+    let nav = args.grid.nav_options()?;
     let profiles: Vec<RobotProfile> = if args.profiles.is_empty() {
         vec![RobotProfile::paper()]
     } else {
@@ -145,7 +216,7 @@ pub fn audit(args: &AuditArgs) -> anyhow::Result<ExitCode> {
         &building,
         &profiles,
         &AuditOptions {
-            nav: NavOptions::default(),
+            nav,
             start: args.start.clone(),
         },
     )?;
@@ -207,16 +278,41 @@ pub fn audit(args: &AuditArgs) -> anyhow::Result<ExitCode> {
 
 /// Runs `poinav export nav2`.
 pub fn nav2(args: &Nav2Args) -> anyhow::Result<ExitCode> {
+    let nav = args.grid.nav_options()?;
     let profile = crate::profile(args.profile.as_deref())?;
     let (building, warnings) = building(&args.file, &profile)?;
     print_warnings(&warnings);
-    let summary =
-        poinav_nav::write_bundle(&building, &profile, &Nav2Options::default(), &args.output)?;
+    let options = Nav2Options {
+        nav,
+        ..Nav2Options::default()
+    };
+    let summary = poinav_nav::write_bundle(&building, &profile, &options, &args.output)?;
+    if args.json {
+        outln!("{}", serde_json::to_string_pretty(&summary)?);
+        return Ok(ExitCode::SUCCESS);
+    }
     outln!(
-        "wrote a Nav2 bundle for {} to {}: {:?}",
+        "wrote a Nav2 bundle for {} to {}: {} storey{}, {} files",
         profile.name,
         args.output.display(),
-        summary
+        summary.storeys.len(),
+        if summary.storeys.len() == 1 { "" } else { "s" },
+        summary.files.len()
     );
+    for s in &summary.storeys {
+        outln!(
+            "  {}/ ({}): map {} x {} cells, origin ({:.2}, {:.2}); keepout {} cells, speed limit {} cells; route graph {} nodes, {} edges",
+            s.folder,
+            s.floor,
+            s.width,
+            s.height,
+            s.origin[0],
+            s.origin[1],
+            s.keepout_cells,
+            s.speed_cells,
+            s.graph_nodes,
+            s.graph_edges
+        );
+    }
     Ok(ExitCode::SUCCESS)
 }

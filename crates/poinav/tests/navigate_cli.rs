@@ -160,7 +160,7 @@ fn nav2_bundle_of_office_a_follows_the_map_server_conventions() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("nav2");
     let file = common::shared().join("ifc/office-a.ifc");
-    let (code, _, err) = run(&[
+    let (code, stdout, err) = run(&[
         OsStr::new("export"),
         OsStr::new("nav2"),
         file.as_os_str(),
@@ -187,6 +187,11 @@ fn nav2_bundle_of_office_a_follows_the_map_server_conventions() {
     assert!(
         pixels.iter().all(|p| [0, 205, 254].contains(p)),
         "trinary values only"
+    );
+    // The summary says what was written, storey by storey.
+    assert!(
+        stdout.contains(&format!("00-level-1/ (Level 1): map {w} x {h} cells")),
+        "{stdout}"
     );
     let free = pixels.iter().filter(|&&p| p == 254).count() as f64 * 0.05 * 0.05;
     let occupied = pixels.iter().filter(|&&p| p == 0).count() as f64 * 0.05 * 0.05;
@@ -333,4 +338,79 @@ fn routes_start_outside_and_the_cli_warns_of_what_limits_navigation() {
     assert!(err.contains(&format!("warning: {expected}")), "{err}");
     let json = std::fs::read_to_string(dir.path().join("stairs/audit.json")).unwrap();
     assert!(json.contains(expected), "{json}");
+}
+
+#[test]
+fn grid_options_change_the_nav2_maps_and_bad_values_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = common::shared().join("ifc/duplex-apartment.ifc");
+    let bundle = |name: &str, extra: &[&str]| {
+        let out = dir.path().join(name);
+        let mut args = vec![
+            OsStr::new("export"),
+            OsStr::new("nav2"),
+            file.as_os_str(),
+            OsStr::new("-o"),
+            out.as_os_str(),
+        ];
+        args.extend(extra.iter().map(OsStr::new));
+        let (code, _, err) = run(&args);
+        assert_eq!(code, 0, "{err}");
+        let storey = out.join("01-level-1");
+        let yaml = std::fs::read_to_string(storey.join("map.yaml")).unwrap();
+        let (w, h, _, pixels) = read_pgm(&std::fs::read(storey.join("map.pgm")).unwrap());
+        let count = |v: u8| pixels.iter().filter(|&&p| p == v).count();
+        (w, h, [count(0), count(254), count(205)], yaml)
+    };
+    let (w, h, [occupied, free, unknown], yaml) = bundle("default", &[]);
+    assert!(yaml.contains("resolution: 0.05"), "{yaml}");
+    // 0.1 m cells: half as many columns and rows, about the same areas.
+    let (w2, h2, [occupied2, free2, _], yaml2) = bundle("coarse", &["--resolution", "0.1"]);
+    assert!(yaml2.contains("resolution: 0.1"), "{yaml2}");
+    assert!(
+        w2.abs_diff(w / 2) <= 1 && h2.abs_diff(h / 2) <= 1,
+        "{w}x{h} -> {w2}x{h2}"
+    );
+    let area = |cells: usize, res: f64| cells as f64 * res * res;
+    let (a, a2) = (area(free, 0.05), area(free2, 0.1));
+    assert!(
+        (a2 - a).abs() / a < 0.05,
+        "free {a} m² at 0.05 m, {a2} m² at 0.1 m"
+    );
+    assert!(occupied2 > 0 && area(occupied2, 0.1) > 0.5 * area(occupied, 0.05));
+    // Furniture left to the sensors (Level 1): the duplex's beds, tables and cabinets turn from occupied
+    // to unknown; no cell becomes free.
+    let (_, _, [occupied3, free3, unknown3], _) = bundle("sensors", &["--furniture", "unknown"]);
+    let moved = occupied - occupied3;
+    assert!(
+        area(moved, 0.05) > 5.0,
+        "{} m² of furniture",
+        area(moved, 0.05)
+    );
+    assert_eq!(
+        unknown3 - unknown,
+        moved,
+        "occupied furniture cells became unknown"
+    );
+    assert_eq!(free3, free);
+    // Out-of-range values are refused before anything is written.
+    for (flag, value) in [
+        ("--resolution", "0"),
+        ("--resolution", "NaN"),
+        ("--entrance-apron", "-1"),
+    ] {
+        let out = dir.path().join("refused");
+        let arg = format!("{flag}={value}");
+        let (code, _, err) = run(&[
+            OsStr::new("export"),
+            OsStr::new("nav2"),
+            file.as_os_str(),
+            OsStr::new("-o"),
+            out.as_os_str(),
+            OsStr::new(&arg),
+        ]);
+        assert_eq!(code, 2, "{flag} {value}: {err}");
+        assert!(err.contains(&format!("{flag} must be between")), "{err}");
+        assert!(!out.exists());
+    }
 }
