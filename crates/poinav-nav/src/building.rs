@@ -33,9 +33,25 @@ impl Building {
         self.floors.iter().position(|f| f.name == name)
     }
 
-    /// What limits navigation on this building, one sentence each: storeys with doors but no
-    /// spaces (their doors join nothing, so they have no entrance and no room to route to).
+    /// What limits navigation on this building, one sentence each: a building with nothing to
+    /// navigate at all (no spaces, doors or obstacles on any storey: an infrastructure model, or
+    /// one without a building), storeys with doors but no spaces (their doors join nothing, so
+    /// they have no entrance and no room to route to).
     pub fn diagnostics(&self) -> Vec<String> {
+        if self
+            .floors
+            .iter()
+            .all(|f| f.zones.is_empty() && f.doors.is_empty() && f.obstacles.is_empty())
+        {
+            return vec![format!(
+                "nothing to navigate: {} spaces, doors, walls or other obstacles (a model without a building, such as infrastructure, or without geometry); the maps are empty",
+                match self.floors.len() {
+                    0 => "the model has no storeys, no".to_string(),
+                    1 => format!("its one storey `{}` has no", self.floors[0].name),
+                    n => format!("none of its {n} storeys has"),
+                }
+            )];
+        }
         self.floors
             .iter()
             .filter(|f| f.zones.is_empty() && !f.doors.is_empty())
@@ -259,6 +275,41 @@ mod tests {
         assert_eq!(
             door_status(&door(0.6, AccessibilityStatus::Blocked), &small).0,
             AccessibilityStatus::FullAccess
+        );
+    }
+
+    #[test]
+    fn a_building_with_nothing_to_navigate_says_so() {
+        let empty = |name: &str| Floor {
+            name: name.into(),
+            ..Floor::default()
+        };
+        let one = Building::single(empty("Default Project"));
+        assert_eq!(
+            one.diagnostics(),
+            ["nothing to navigate: its one storey `Default Project` has no spaces, doors, walls or other obstacles (a model without a building, such as infrastructure, or without geometry); the maps are empty"]
+        );
+        let none = Building {
+            floors: vec![],
+            connections: vec![],
+        };
+        assert!(none.diagnostics()[0]
+            .starts_with("nothing to navigate: the model has no storeys, no spaces"));
+        let mut two = Building {
+            floors: vec![empty("L1"), empty("L2")],
+            connections: vec![],
+        };
+        assert!(two.diagnostics()[0]
+            .starts_with("nothing to navigate: none of its 2 storeys has spaces"));
+        // One door is something: the storey-without-spaces warning instead.
+        two.floors[1]
+            .doors
+            .push(door(1.0, AccessibilityStatus::FullAccess));
+        let d = two.diagnostics();
+        assert_eq!(d.len(), 1);
+        assert!(
+            d[0].starts_with("storey `L2` has 1 door but no spaces"),
+            "{d:?}"
         );
     }
 

@@ -414,3 +414,28 @@ fn grid_options_change_the_nav2_maps_and_bad_values_are_refused() {
         assert!(!out.exists());
     }
 }
+
+#[test]
+fn a_model_without_a_building_is_said_to_have_nothing_to_navigate() {
+    // The railway model: IfcRailway, alignments and track elements, no building.
+    let dir = tempfile::tempdir().unwrap();
+    let file = common::shared().join("ifc/railway-track-ifc4x3.ifc");
+    let out = dir.path().join("report.html");
+    let (code, stdout, err) = run(&[
+        OsStr::new("audit"),
+        file.as_os_str(),
+        OsStr::new("-o"),
+        out.as_os_str(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        err.contains("warning: nothing to navigate: its one storey `Default Project` has no spaces, doors, walls or other obstacles"),
+        "{err}"
+    );
+    assert!(stdout.contains("spaces 0 reachable, 0 not"), "{stdout}");
+    let html = std::fs::read_to_string(&out).unwrap();
+    assert!(
+        html.contains("nothing to navigate"),
+        "the report lists it too"
+    );
+}
