@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
 # The main job end to end: builds poinav in release mode and runs `poinav demo` (the paper's
-# test building: enrichment, the three validation scenarios, design iteration, GLB, report) into
+# test building: enrichment, the three validation scenarios, design iteration, routes, audit,
+# Nav2 bundle, GLB, report) into
 # out/demo/; then inspects and enriches every model of the corpus into out/demo/corpus/: per
 # model the inspect report (.json), the enriched IFC (.poi.ifc), the semantic CSV (.csv), the
-# IDS (.ids), the enrichment summary (.enrich.json) and a floor plan of its first storey (.svg),
-# plus a summary table.
+# IDS (.ids), the enrichment summary (.enrich.json), a floor plan of its first storey (.svg) and
+# the accessibility audit for the paper's robot (.audit/report.html), plus a summary table.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
@@ -25,6 +26,8 @@ for f in "$shared"/ifc/*.ifc; do
     "$bin" inspect "$f" --json > "$out/$name.json"
     "$bin" enrich "$f" -o "$out/$name.poi.ifc" --csv "$out/$name.csv" --ids "$out/$name.ids" --json > "$out/$name.enrich.json"
     "$bin" plan "$f" -o "$out/$name.svg" > /dev/null 2>&1 || true
+    mkdir -p "$out/$name.audit"
+    "$bin" audit "$f" -o "$out/$name.audit/report.html" > /dev/null 2>&1 || true
     python3 - "$out/$name.json" "$out/$name.enrich.json" "$name" <<'PY' | tee -a "$out/summary.txt"
 import json, sys
 r = json.load(open(sys.argv[1]))

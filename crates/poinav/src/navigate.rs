@@ -135,7 +135,7 @@ pub struct Nav2Args {
 /// The building's storeys as floors, classified for `profile`, and warnings: the stairs,
 /// ramps and lifts left out (with why) and what else limits navigation
 /// ([`Building::diagnostics`]).
-fn building(file: &Path, profile: &RobotProfile) -> anyhow::Result<(Building, Vec<String>)> {
+pub fn building(file: &Path, profile: &RobotProfile) -> anyhow::Result<(Building, Vec<String>)> {
     let model = Model::open(file)?;
     let c = classify(&model, &RuleSet::defaults(), profile);
     let (building, dropped) = poinav_sim::ifc_floor::building_and_dropped(&model, &c);

@@ -171,6 +171,12 @@ fn demo_passes_and_is_byte_identical_run_to_run() {
         "doorway/door-0.80/trace.jsonl",
         "separation/summary.json",
         "wall-following/trajectories.svg",
+        "navigation/report.html",
+        "navigation/audit.json",
+        "navigation/route-room1-room2.json",
+        "navigation-wide/route-room1-room2.json",
+        "nav2/00-ground-floor/map.pgm",
+        "nav2/00-ground-floor/route_graph.geojson",
     ] {
         assert!(names.contains(&must), "{must} missing from {names:?}");
     }
@@ -184,4 +190,54 @@ fn demo_passes_and_is_byte_identical_run_to_run() {
     )
     .unwrap();
     assert!(wide.contains("IFCLABEL('FULL_ACCESS')"));
+    // The same route on both designs: through the same doors, slower through the 0.80 m door
+    // (B-2, half speed) than through the widened one.
+    let route = |name: &str| -> serde_json::Value {
+        serde_json::from_slice(&a.iter().find(|(n, _)| n == name).unwrap().1).unwrap()
+    };
+    let (first, widened) = (
+        route("navigation/route-room1-room2.json"),
+        route("navigation-wide/route-room1-room2.json"),
+    );
+    for r in [&first, &widened] {
+        let doors: Vec<&str> = r["doors"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|d| d["name"].as_str().unwrap())
+            .collect();
+        assert_eq!(doors, ["Door Room 1", "Door Room 2"], "{r}");
+    }
+    let t = |r: &serde_json::Value| r["time_s"].as_f64().unwrap();
+    assert!(
+        t(&first) > t(&widened),
+        "{} s vs {} s",
+        t(&first),
+        t(&widened)
+    );
+    // The audit from the corridor reaches all seven spaces; one door is RESTRICTED.
+    let audit: serde_json::Value = serde_json::from_slice(
+        &a.iter()
+            .find(|(n, _)| n == "navigation/audit.json")
+            .unwrap()
+            .1,
+    )
+    .unwrap();
+    let p = &audit["profiles"][0];
+    assert!(
+        p["spaces"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .all(|s| s["reachable"] == true),
+        "{p}"
+    );
+    let restricted: Vec<&str> = p["doors"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|d| d["status"] == "RESTRICTED")
+        .map(|d| d["name"].as_str().unwrap())
+        .collect();
+    assert_eq!(restricted, ["Door Room 2"]);
 }
