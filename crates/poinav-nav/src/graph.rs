@@ -114,17 +114,21 @@ pub struct DoorSides {
     /// only it is no entrance: it leads into what the model leaves undescribed (a lift shaft,
     /// a void, a room without an IfcSpace), not outside.
     pub doorless: bool,
+    /// Its side without a zone is walled in (a closet or shaft without an IfcSpace, a
+    /// courtyard), not outside: no entrance. Set by [`crate::Navigator`] from the grid.
+    pub walled_in: bool,
 }
 
 impl DoorSides {
-    /// True for a door with a zone on one side only: an entrance (never a doorway).
+    /// True for a door with a zone on one side only whose other side is outside: an entrance
+    /// (never a doorway, nor a door into a walled-in room without a space).
     pub fn exterior(&self) -> bool {
-        !self.doorless && self.zones[0].is_some() != self.zones[1].is_some()
+        !self.doorless && !self.walled_in && self.zones[0].is_some() != self.zones[1].is_some()
     }
 
     /// The side (-1 or +1 along the frame's normal) that leads outside, for an exterior door.
     pub fn outside_side(&self) -> Option<f64> {
-        if self.doorless {
+        if self.doorless || self.walled_in {
             return None;
         }
         match self.zones {
@@ -332,6 +336,7 @@ impl Topology {
                     zones,
                     from_spaces,
                     doorless: floor.doors[k].doorless,
+                    walled_in: false,
                 });
             }
         }

@@ -440,6 +440,39 @@ impl OccupancyGrid {
         (c < self.width && r < self.height).then_some(r * self.width + c)
     }
 
+    /// True when `p` lies in free space that is in no zone and no door passage and is walled
+    /// in: the cells around it that are neither occupied nor in a zone or door never reach the
+    /// grid's border (a closet or shaft without a space, a courtyard). Space enclosed by walls
+    /// and doors is free only with [`GridOptions::fill_enclosed`]; the outside is unknown and
+    /// reaches the border.
+    pub fn walled_in(&self, p: DVec2) -> bool {
+        let Some(start) = self.cell_of(p) else {
+            return false;
+        };
+        let open = |i: usize| {
+            self.cells[i] != CellState::Occupied && self.zone[i] == NONE && self.door[i] == NONE
+        };
+        if self.cells[start] != CellState::Free || !open(start) {
+            return false;
+        }
+        let mut seen = vec![false; self.cells.len()];
+        seen[start] = true;
+        let mut stack = vec![start];
+        while let Some(i) = stack.pop() {
+            let (c, r) = (i % self.width, i / self.width);
+            if c == 0 || r == 0 || c + 1 == self.width || r + 1 == self.height {
+                return false;
+            }
+            for j in [i - 1, i + 1, i - self.width, i + self.width] {
+                if !seen[j] && open(j) {
+                    seen[j] = true;
+                    stack.push(j);
+                }
+            }
+        }
+        true
+    }
+
     /// World position of a cell's centre.
     pub fn center(&self, i: usize) -> DVec2 {
         let (c, r) = (i % self.width, i / self.width);

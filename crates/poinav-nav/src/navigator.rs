@@ -103,6 +103,19 @@ impl<'a> Navigator<'a> {
                 door_speed,
             });
         }
+        // A door with a zone on one side whose other side is walled in (a closet or shaft
+        // without an IfcSpace, a courtyard) is no entrance: probe just beyond its face.
+        for d in &mut topology.doors {
+            let Some(side) = d.outside_side() else {
+                continue;
+            };
+            let g = &floors[d.floor].grid.occupancy;
+            let Some(f) = g.doors.get(d.door).and_then(|x| x.frame) else {
+                continue;
+            };
+            let p = f.center + f.normal * side * (f.half_depth + 2.0 * g.resolution_m);
+            d.walled_in = g.walled_in(p);
+        }
         for (fi, f) in floors.iter().enumerate() {
             topology.add_open_boundaries(fi, &f.grid, 2);
         }

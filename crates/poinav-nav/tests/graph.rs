@@ -123,3 +123,62 @@ fn a_doorway_into_an_undescribed_room_is_no_entrance() {
     );
     assert_eq!(json["nodes"][east.node]["doorless"].as_bool(), Some(false));
 }
+
+/// A hall (4 x 3 m) with a front door in its east wall and a door in its north wall into a
+/// walled-in closet (1 x 0.8 m) that has no space.
+fn hall_with_closet() -> Floor {
+    Floor {
+        name: "Ground".into(),
+        obstacles: vec![support::wall(
+            "walls",
+            vec![
+                rect(-0.2, -0.2, 4.2, 0.0),
+                rect(-0.2, 3.0, 1.0, 3.2),
+                rect(2.0, 3.0, 4.2, 3.2),
+                rect(-0.2, 0.0, 0.0, 3.0),
+                rect(4.0, 0.0, 4.2, 1.0),
+                rect(4.0, 2.0, 4.2, 3.0),
+                // The closet north of the hall: 1.0 m wide inside, 0.8 m deep.
+                rect(0.8, 3.2, 1.0, 4.2),
+                rect(2.0, 3.2, 2.2, 4.2),
+                rect(0.8, 4.0, 2.2, 4.2),
+            ],
+        )],
+        doors: vec![
+            door("closet", "Closet door", rect(1.0, 3.0, 2.0, 3.2), 0.95),
+            door("front", "Front door", rect(4.0, 1.0, 4.2, 2.0), 1.0),
+        ],
+        zones: vec![room("hall", "Hall", rect(0.0, 0.0, 4.0, 3.0))],
+        ..Floor::default()
+    }
+}
+
+#[test]
+fn a_door_into_a_walled_in_room_without_a_space_is_no_entrance() {
+    use poinav_nav::{NavOptions, Navigator, Place};
+    use poinav_poi::RobotProfile;
+    let building = Building::single(hall_with_closet());
+    // The topology alone cannot tell: both doors have the hall on one side only.
+    let topology = Topology::build(&building);
+    assert!(topology.doors.iter().all(|d| d.exterior()));
+    // The grid can: the closet is walled in, the front door opens onto the outside.
+    let nav = Navigator::new(&building, &RobotProfile::paper(), &NavOptions::default()).unwrap();
+    let (closet, front) = (&nav.topology.doors[0], &nav.topology.doors[1]);
+    assert!(closet.walled_in && !closet.exterior(), "{closet:?}");
+    assert!(!front.walled_in && front.exterior(), "{front:?}");
+    assert_eq!(nav.topology.entrances(), vec![front.node]);
+    // Routes from outside come in by the front door.
+    let outside: Place = "outside".parse().unwrap();
+    let route = nav.route(&outside, &Place::zone("Hall")).unwrap();
+    let doors: Vec<&str> = route
+        .doors
+        .iter()
+        .map(|d| d.name.as_deref().unwrap())
+        .collect();
+    assert_eq!(doors, ["Front door"]);
+    let json = nav.topology_json();
+    assert_eq!(
+        json["nodes"][closet.node]["exterior"].as_bool(),
+        Some(false)
+    );
+}
