@@ -10,27 +10,8 @@ use poinav_poi::{classify, AccessibilityStatus, RobotProfile, Role, RuleSet};
 
 const STAMP: &str = "2026-11-22T02:30:00";
 
-fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../..")
-        .canonicalize()
-        .unwrap()
-}
-
 fn python() -> PathBuf {
-    let py = std::env::var_os("POINAV_PYTHON")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| root().join(".venv/bin/python"));
-    let ok = Command::new(&py)
-        .args(["-c", "import ifcopenshell"])
-        .output()
-        .is_ok_and(|o| o.status.success());
-    assert!(
-        ok,
-        "IfcOpenShell is not importable with {}: run `bash scripts/setup-python.sh`",
-        py.display()
-    );
-    py
+    poinav_testkit::python("ifcopenshell")
 }
 
 /// IfcOpenShell's view of a file: validation errors and, per named wall or door, mesh area and bounds.
@@ -219,10 +200,7 @@ fn patch_finds_doors_by_guid_or_unique_name_and_refuses_bad_requests() {
 
 #[test]
 fn patching_a_real_revit_door_keeps_every_other_line() {
-    let shared = std::env::var_os("POINAV_SHARED")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| root().join("../shared"));
-    let model = Model::open(shared.join("ifc/office-a.ifc")).unwrap();
+    let model = Model::open(poinav_testkit::corpus_file("office-a.ifc")).unwrap();
     let door = model.instances_of("IfcDoor")[0];
     let (ed, patch) = patch_door_width(&model, &door.global_id().unwrap(), 1.2, STAMP).unwrap();
     assert!((patch.old_width_m.unwrap() - 0.915).abs() < 1e-9);

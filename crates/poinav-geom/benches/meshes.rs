@@ -6,7 +6,6 @@
 //! run takes about a minute.
 
 use std::hint::black_box;
-use std::path::PathBuf;
 use std::time::Duration;
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, SamplingMode};
@@ -16,17 +15,9 @@ use poinav_ifc::Model;
 /// The files benchmarked: one large merged IFC2X3 model and one mid-sized office.
 const FILES: [&str; 2] = ["synthetic-merged-office-duplex-ifc2x3.ifc", "office-a.ifc"];
 
-/// `shared/` beside the repository, or `$POINAV_SHARED`.
-fn shared() -> PathBuf {
-    std::env::var_os("POINAV_SHARED").map_or_else(
-        || PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../../../shared")),
-        PathBuf::from,
-    )
-}
-
 /// Corpus file `name`, indexed; panics with the path when it is missing.
 fn load(name: &str) -> Model {
-    let path = shared().join("ifc").join(name);
+    let path = poinav_testkit::corpus_file(name);
     Model::open(&path).unwrap_or_else(|e| {
         panic!(
             "cannot read {} ({e}); set POINAV_SHARED to the folder holding ifc/",

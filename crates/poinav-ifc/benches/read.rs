@@ -5,7 +5,6 @@
 //! whole run takes well under a minute.
 
 use std::hint::black_box;
-use std::path::PathBuf;
 use std::time::Duration;
 
 use criterion::{
@@ -16,17 +15,9 @@ use poinav_ifc::{spatial, units, Model};
 /// The files benchmarked: one large merged IFC2X3 model and one mid-sized office.
 const FILES: [&str; 2] = ["synthetic-merged-office-duplex-ifc2x3.ifc", "office-a.ifc"];
 
-/// `shared/` beside the repository, or `$POINAV_SHARED`.
-fn shared() -> PathBuf {
-    std::env::var_os("POINAV_SHARED").map_or_else(
-        || PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../../../shared")),
-        PathBuf::from,
-    )
-}
-
 /// The bytes of corpus file `name`; panics with the path when it is missing.
 fn load(name: &str) -> Vec<u8> {
-    let path = shared().join("ifc").join(name);
+    let path = poinav_testkit::corpus_file(name);
     std::fs::read(&path).unwrap_or_else(|e| {
         panic!(
             "cannot read {} ({e}); set POINAV_SHARED to the folder holding ifc/",

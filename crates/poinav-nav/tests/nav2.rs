@@ -30,31 +30,9 @@ fn read_yaml(path: &Path) -> BTreeMap<String, String> {
 
 /// A binary PGM (P5, maxval 255): width, height, pixels row by row from the top.
 fn read_pgm(path: &Path) -> (usize, usize, Vec<u8>) {
-    let bytes = std::fs::read(path).unwrap();
-    let mut fields = Vec::new();
-    let mut i = 0;
-    while fields.len() < 4 {
-        while bytes[i].is_ascii_whitespace() {
-            i += 1;
-        }
-        if bytes[i] == b'#' {
-            while bytes[i] != b'\n' {
-                i += 1;
-            }
-            continue;
-        }
-        let start = i;
-        while !bytes[i].is_ascii_whitespace() {
-            i += 1;
-        }
-        fields.push(String::from_utf8(bytes[start..i].to_vec()).unwrap());
-    }
-    i += 1; // the single whitespace after maxval
-    assert_eq!(fields[0], "P5");
-    assert_eq!(fields[3], "255");
-    let (w, h): (usize, usize) = (fields[1].parse().unwrap(), fields[2].parse().unwrap());
-    assert_eq!(bytes.len() - i, w * h);
-    (w, h, bytes[i..].to_vec())
+    let pgm = poinav_testkit::read_pgm(&std::fs::read(path).unwrap());
+    assert_eq!(pgm.maxval, 255);
+    (pgm.width, pgm.height, pgm.pixels)
 }
 
 /// An occupancy grid as nav2_map_server loads it: cell values (-1 unknown, 0-100) with row 0 at

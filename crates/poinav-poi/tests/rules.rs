@@ -404,19 +404,13 @@ fn user_rules_extend_or_replace_and_later_rules_win_ties() {
         .contains("unknown measure `width`"));
 }
 
-fn shared() -> std::path::PathBuf {
-    std::env::var_os("POINAV_SHARED")
-        .map(Into::into)
-        .unwrap_or_else(|| std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared"))
-}
-
 #[test]
 fn door_statuses_of_real_buildings_follow_their_widths() {
     for (file, full, restricted, min_w, max_w) in [
         ("office-a.ifc", 97, 5, 0.813, 1.830),
         ("duplex-apartment.ifc", 2, 12, 0.762, 1.250),
     ] {
-        let m = Model::open(shared().join("ifc").join(file)).unwrap();
+        let m = Model::open(poinav_testkit::corpus_file(file)).unwrap();
         let c = classify(&m, &RuleSet::defaults(), &RobotProfile::paper());
         let doors: Vec<_> = c.elements.iter().filter(|e| e.class == "IfcDoor").collect();
         let widths: Vec<f64> = doors

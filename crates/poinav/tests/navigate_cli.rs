@@ -128,31 +128,8 @@ fn routes_pass_the_expected_doors_and_a_narrowed_door_is_named_as_the_blocker() 
 
 /// Reads a binary PGM (P5): width, height, max value and pixels.
 fn read_pgm(bytes: &[u8]) -> (usize, usize, u32, Vec<u8>) {
-    let mut fields = Vec::new();
-    let mut i = 0;
-    while fields.len() < 4 {
-        while bytes[i].is_ascii_whitespace() {
-            i += 1;
-        }
-        if bytes[i] == b'#' {
-            while bytes[i] != b'\n' {
-                i += 1;
-            }
-            continue;
-        }
-        let s = i;
-        while !bytes[i].is_ascii_whitespace() {
-            i += 1;
-        }
-        fields.push(String::from_utf8(bytes[s..i].to_vec()).unwrap());
-    }
-    assert_eq!(fields[0], "P5");
-    let (w, h, max) = (
-        fields[1].parse().unwrap(),
-        fields[2].parse().unwrap(),
-        fields[3].parse().unwrap(),
-    );
-    (w, h, max, bytes[i + 1..].to_vec())
+    let pgm = poinav_testkit::read_pgm(bytes);
+    (pgm.width, pgm.height, pgm.maxval, pgm.pixels)
 }
 
 #[test]

@@ -4,8 +4,6 @@
 // Each bench binary uses its own subset of these helpers.
 #![allow(dead_code)]
 
-use std::path::PathBuf;
-
 use glam::DVec2;
 use poinav_nav::Floor;
 use poinav_poi::{RobotProfile, RuleSet};
@@ -13,14 +11,6 @@ use poinav_sim::geometry::{point_in_ring, point_segment_distance};
 
 /// The storey of office-a.ifc the benchmarks use.
 pub const OFFICE_STOREY: &str = "Level 1";
-
-/// `shared/` beside the repository, or `$POINAV_SHARED`.
-pub fn shared() -> PathBuf {
-    std::env::var_os("POINAV_SHARED").map_or_else(
-        || PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../../../shared")),
-        PathBuf::from,
-    )
-}
 
 /// The paper's test building, as `poinav simulate` prepares it.
 pub fn demo_floor() -> Floor {
@@ -36,7 +26,7 @@ pub fn demo_floor() -> Floor {
 /// office-a.ifc's [`OFFICE_STOREY`], classified with the default rules and the paper's robot
 /// and converted by [`poinav_sim::ifc_floor::converter`].
 pub fn office_floor() -> Floor {
-    let path = shared().join("ifc").join("office-a.ifc");
+    let path = poinav_testkit::corpus_file("office-a.ifc");
     let bytes = std::fs::read(&path).unwrap_or_else(|e| {
         panic!(
             "cannot read {} ({e}); set POINAV_SHARED to the folder holding ifc/",

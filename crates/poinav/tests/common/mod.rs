@@ -1,69 +1,21 @@
-//! Shared helpers for the integration tests: workspace paths, the corpus, IfcOpenShell's Python.
+//! Shared helpers for the integration tests: workspace paths, the corpus and IfcOpenShell's
+//! Python (from `poinav-testkit`), running the `poinav` binary and `poinav serve`.
 
-#![allow(dead_code)]
+#![allow(dead_code, unused_imports)]
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-/// The workspace root.
-pub fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../..")
-        .canonicalize()
-        .expect("workspace root")
-}
+pub use poinav_testkit::{corpus, root, shared};
 
-/// `shared/` beside the repository (override with `POINAV_SHARED`).
-pub fn shared() -> PathBuf {
-    std::env::var_os("POINAV_SHARED")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| root().join("../shared"))
-}
-
-/// Every `.ifc` file of the public corpus, sorted.
-pub fn corpus() -> Vec<PathBuf> {
-    let dir = shared().join("ifc");
-    let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)
-        .unwrap_or_else(|e| panic!("corpus folder {} is missing: {e}", dir.display()))
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|x| x == "ifc"))
-        .collect();
-    files.sort();
-    assert!(
-        files.len() >= 13,
-        "expected the 15-file corpus in {}",
-        dir.display()
-    );
-    files
-}
-
-/// The Python that has IfcOpenShell: `POINAV_PYTHON`, else `.venv/bin/python` at the root.
-/// Panics (never skips) when it is missing: run `scripts/setup-python.sh` first.
+/// The Python that has IfcOpenShell (panics, never skips, when it is missing).
 pub fn python() -> PathBuf {
-    let py = std::env::var_os("POINAV_PYTHON")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| root().join(".venv/bin/python"));
-    let ok = Command::new(&py)
-        .args(["-c", "import ifcopenshell"])
-        .output()
-        .is_ok_and(|o| o.status.success());
-    assert!(ok, "IfcOpenShell is not importable with {}: run `bash scripts/setup-python.sh` (the README's test command does)", py.display());
-    py
+    poinav_testkit::python("ifcopenshell")
 }
 
 /// Runs a script from `tests/ifcos/` with IfcOpenShell's Python and parses its JSON output.
 pub fn ifcos(script: &str, args: &[&std::ffi::OsStr]) -> serde_json::Value {
-    let out = Command::new(python())
-        .arg(root().join("tests/ifcos").join(script))
-        .args(args)
-        .output()
-        .expect("python runs");
-    assert!(
-        out.status.success(),
-        "{script} failed: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    serde_json::from_slice(&out.stdout).unwrap_or_else(|e| panic!("{script} printed no JSON: {e}"))
+    poinav_testkit::ifcos_with(&python(), script, args)
 }
 
 /// Runs the `poinav` binary; returns (exit code, stdout, stderr).
