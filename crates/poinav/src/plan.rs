@@ -65,8 +65,13 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     );
     poinav_ifc::output::write_atomic(&args.output, svg.as_bytes())
         .with_context(|| format!("writing {}", args.output.display()))?;
+    let doorways = match plan.openings.len() {
+        0 => String::new(),
+        1 => "; 1 doorway without a door".to_string(),
+        n => format!("; {n} doorways without a door"),
+    };
     outln!(
-        "wrote {}: storey {} ({} items, {} doors, {} problems)",
+        "wrote {}: storey {} ({} items, {} doors, {} problems{doorways})",
         args.output.display(),
         plan.storey_name.as_deref().unwrap_or("-"),
         plan.items.len(),

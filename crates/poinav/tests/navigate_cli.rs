@@ -416,3 +416,28 @@ fn a_model_without_a_building_is_said_to_have_nothing_to_navigate() {
         "the report lists it too"
     );
 }
+
+#[test]
+fn the_plan_draws_and_counts_office_a_lift_doorway() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = common::shared().join("ifc/office-a.ifc");
+    let out = dir.path().join("level-1.svg");
+    let (code, stdout, err) = run(&[
+        OsStr::new("plan"),
+        file.as_os_str(),
+        OsStr::new("--storey"),
+        OsStr::new("Level 1"),
+        OsStr::new("-o"),
+        out.as_os_str(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        stdout.contains("(574 items, 66 doors, 0 problems; 1 doorway without a door)"),
+        "{stdout}"
+    );
+    let svg = std::fs::read_to_string(&out).unwrap();
+    assert!(
+        svg.contains(r#"data-global-id="27TOPmxCrDgPimmYCM5z6f" data-class="IfcOpeningElement""#),
+        "the lift doorway's passage is drawn"
+    );
+}
