@@ -117,18 +117,8 @@ pub fn door_passage<'m>(
         other
     };
     let across = along.perp();
-    let extent = |axis: DVec2| {
-        let (lo, hi) = footprint
-            .polygon
-            .iter()
-            .map(|p| (*p - rect.center).dot(axis))
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), t| {
-                (lo.min(t), hi.max(t))
-            });
-        (lo, hi)
-    };
-    let (u0, u1) = extent(along);
-    let (v0, v1) = extent(across);
+    let (u0, u1) = extent(&footprint.polygon, rect.center, along);
+    let (v0, v1) = extent(&footprint.polygon, rect.center, across);
     let center = rect.center + along * (u0 + u1) / 2.0 + across * (v0 + v1) / 2.0;
     let opening_width_m = u1 - u0;
     let metres = cache.metres_per_unit();
@@ -148,6 +138,16 @@ pub fn door_passage<'m>(
         measured,
         z_range: (footprint.z_min, footprint.z_max),
     })
+}
+
+/// The smallest and largest offset of `points` from `origin` along `axis`.
+fn extent(points: &[DVec2], origin: DVec2, axis: DVec2) -> (f64, f64) {
+    points
+        .iter()
+        .map(|p| (*p - origin).dot(axis))
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), t| {
+            (lo.min(t), hi.max(t))
+        })
 }
 
 /// Openings narrower than this (metres) are no passage for anyone (cable and pipe chases).
@@ -175,16 +175,8 @@ pub fn opening_passage<'m>(
     let along = wall_rect.direction;
     let across = along.perp();
     let origin = hole_rect.center;
-    let extent = |points: &[DVec2], axis: DVec2| {
-        points
-            .iter()
-            .map(|p| (*p - origin).dot(axis))
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), t| {
-                (lo.min(t), hi.max(t))
-            })
-    };
-    let (u0, u1) = extent(&hole.polygon, along);
-    let (mut v0, mut v1) = extent(&hole.polygon, across);
+    let (u0, u1) = extent(&hole.polygon, origin, along);
+    let (mut v0, mut v1) = extent(&hole.polygon, origin, across);
     // The wall's faces where the opening is: its outline's points within the opening's width.
     let near: Vec<DVec2> = host
         .polygon
@@ -201,6 +193,7 @@ pub fn opening_passage<'m>(
         } else {
             &host.polygon
         },
+        origin,
         across,
     );
     if w0.max(v0) < w1.min(v1) {

@@ -115,7 +115,8 @@ pub struct DoorSides {
     /// a void, a room without an IfcSpace), not outside.
     pub doorless: bool,
     /// Its side without a zone is walled in (a closet or shaft without an IfcSpace, a
-    /// courtyard), not outside: no entrance. Set by [`crate::Navigator`] from the grid.
+    /// courtyard), not outside: no entrance. Set by [`crate::Navigator`] from
+    /// [`crate::grid::GridDoor::walled_in`].
     pub walled_in: bool,
 }
 
@@ -605,11 +606,7 @@ impl Topology {
                             } else {
                                 "geometry"
                             });
-                        v["doorless"] = serde_json::json!(building
-                            .floors
-                            .get(n.floor)
-                            .and_then(|f| f.doors.get(n.index))
-                            .is_some_and(|d| d.doorless));
+                        v["doorless"] = serde_json::json!(sides.is_some_and(|s| s.doorless));
                         v["status"] = serde_json::json!(statuses[n.id].0);
                         v["reason"] = serde_json::json!(statuses[n.id].1);
                     }

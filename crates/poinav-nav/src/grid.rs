@@ -101,6 +101,11 @@ pub struct GridDoor {
     /// the ring), metres; `None` without a frame.
     #[serde(skip)]
     pub passage_half_width_m: Option<f64>,
+    /// A door with a zone on one side whose other side is walled in: the cell just beyond its
+    /// face is enclosed free space in no zone (a closet or shaft without an IfcSpace, a
+    /// courtyard; found only with [`GridOptions::fill_enclosed`]). It gets no apron and is no
+    /// entrance.
+    pub walled_in: bool,
 }
 
 /// A storey rasterised for one robot profile.
@@ -178,12 +183,13 @@ fn paint(
 /// exterior door (a zone on one side only) that is open for `profile`, outside, a rectangle as
 /// wide as its passage and as deep as the apron; a door that joins no zone at all (a model
 /// without spaces) gets one on each side, so its passage can be planned through and checked.
-/// Doorways ([`crate::FloorDoor::doorless`]) with a zone on one side only get none.
+/// Doorways ([`crate::FloorDoor::doorless`]) with a zone on one side only get none. Each ring
+/// comes with the index of its door.
 pub fn entrance_aprons(
     floor: &Floor,
     profile: &RobotProfile,
     options: &GridOptions,
-) -> Vec<Vec<DVec2>> {
+) -> Vec<(usize, Vec<DVec2>)> {
     let apron = options.entrance_apron_m;
     if !(apron.is_finite() && apron > 0.0) {
         return Vec::new();
@@ -212,10 +218,21 @@ pub fn entrance_aprons(
                 half_depth: apron / 2.0,
                 ..f
             };
-            out.push(front.rectangle(f.half_width, apron / 2.0));
+            out.push((k, front.rectangle(f.half_width, apron / 2.0)));
         }
     }
     out
+}
+
+/// The index of the cell containing `p` in a grid of `width` x `height` cells of `res` metres
+/// whose lower-left corner is `origin`.
+fn cell_at(origin: DVec2, res: f64, width: usize, height: usize, p: DVec2) -> Option<usize> {
+    let q = (p - origin) / res;
+    if q.x < 0.0 || q.y < 0.0 {
+        return None;
+    }
+    let (c, r) = (q.x.floor() as usize, q.y.floor() as usize);
+    (c < width && r < height).then_some(r * width + c)
 }
 
 impl OccupancyGrid {
@@ -237,7 +254,10 @@ impl OccupancyGrid {
         }
         // An empty storey is a patch of unknown cells. The entrance aprons are inside.
         let (mut lo, mut hi) = floor.bounds().unwrap_or((DVec2::ZERO, DVec2::ZERO));
-        for p in entrance_aprons(floor, profile, options).iter().flatten() {
+        for p in entrance_aprons(floor, profile, options)
+            .iter()
+            .flat_map(|(_, ring)| ring)
+        {
             (lo, hi) = (lo.min(*p), hi.max(*p));
         }
         let pad = options.padding_m.max(0.0);
@@ -390,17 +410,37 @@ impl OccupancyGrid {
                     });
                 }
             }
+            // Walled in: before any apron is painted, a free cell in no zone and no door is
+            // one the enclosed fill made free, so enclosed by walls and doors.
+            let side = match crate::graph::door_zones(floor, k) {
+                [None, Some(_)] => Some(-1.0),
+                [Some(_), None] => Some(1.0),
+                _ => None,
+            };
+            let walled_in = match (frame, side) {
+                (Some(f), Some(side)) if !d.doorless => {
+                    let p = f.center + f.normal * side * (f.half_depth + 2.0 * res);
+                    cell_at(origin, res, width, height, p).is_some_and(|i| {
+                        cells[i] == CellState::Free && zone[i] == NONE && door[i] == NONE
+                    })
+                }
+                _ => false,
+            };
             doors.push(GridDoor {
                 status,
                 reason,
                 open,
                 frame,
                 passage_half_width_m,
+                walled_in,
             });
         }
 
         // Entrance aprons: free cells in front of open exterior doors, outside.
-        for ring in entrance_aprons(floor, profile, options) {
+        for (k, ring) in entrance_aprons(floor, profile, options) {
+            if doors[k].walled_in {
+                continue;
+            }
             paint(width, height, origin, res, &ring, |i| {
                 if cells[i] == CellState::Unknown {
                     cells[i] = CellState::Free;
@@ -432,45 +472,7 @@ impl OccupancyGrid {
 
     /// The index of the cell containing `p`, if inside the grid.
     pub fn cell_of(&self, p: DVec2) -> Option<usize> {
-        let q = (p - self.origin) / self.resolution_m;
-        if q.x < 0.0 || q.y < 0.0 {
-            return None;
-        }
-        let (c, r) = (q.x.floor() as usize, q.y.floor() as usize);
-        (c < self.width && r < self.height).then_some(r * self.width + c)
-    }
-
-    /// True when `p` lies in free space that is in no zone and no door passage and is walled
-    /// in: the cells around it that are neither occupied nor in a zone or door never reach the
-    /// grid's border (a closet or shaft without a space, a courtyard). Space enclosed by walls
-    /// and doors is free only with [`GridOptions::fill_enclosed`]; the outside is unknown and
-    /// reaches the border.
-    pub fn walled_in(&self, p: DVec2) -> bool {
-        let Some(start) = self.cell_of(p) else {
-            return false;
-        };
-        let open = |i: usize| {
-            self.cells[i] != CellState::Occupied && self.zone[i] == NONE && self.door[i] == NONE
-        };
-        if self.cells[start] != CellState::Free || !open(start) {
-            return false;
-        }
-        let mut seen = vec![false; self.cells.len()];
-        seen[start] = true;
-        let mut stack = vec![start];
-        while let Some(i) = stack.pop() {
-            let (c, r) = (i % self.width, i / self.width);
-            if c == 0 || r == 0 || c + 1 == self.width || r + 1 == self.height {
-                return false;
-            }
-            for j in [i - 1, i + 1, i - self.width, i + self.width] {
-                if !seen[j] && open(j) {
-                    seen[j] = true;
-                    stack.push(j);
-                }
-            }
-        }
-        true
+        cell_at(self.origin, self.resolution_m, self.width, self.height, p)
     }
 
     /// World position of a cell's centre.

@@ -103,18 +103,9 @@ impl<'a> Navigator<'a> {
                 door_speed,
             });
         }
-        // A door with a zone on one side whose other side is walled in (a closet or shaft
-        // without an IfcSpace, a courtyard) is no entrance: probe just beyond its face.
+        // A door whose side without a zone is walled in is no entrance (the grid found it).
         for d in &mut topology.doors {
-            let Some(side) = d.outside_side() else {
-                continue;
-            };
-            let g = &floors[d.floor].grid.occupancy;
-            let Some(f) = g.doors.get(d.door).and_then(|x| x.frame) else {
-                continue;
-            };
-            let p = f.center + f.normal * side * (f.half_depth + 2.0 * g.resolution_m);
-            d.walled_in = g.walled_in(p);
+            d.walled_in = floors[d.floor].grid.occupancy.doors[d.door].walled_in;
         }
         for (fi, f) in floors.iter().enumerate() {
             topology.add_open_boundaries(fi, &f.grid, 2);
@@ -219,8 +210,10 @@ impl<'a> Navigator<'a> {
                 (d < lethal - 1e-6).then(|| (d, format!("{} {}", o.class, o.id)))
             })
             .collect();
-        found.sort_by(|a, b| a.0.total_cmp(&b.0).then_with(|| a.1.cmp(&b.1)));
+        // One entry per element (an element may stand as several obstacles), nearest first.
+        found.sort_by(|a, b| a.1.cmp(&b.1).then_with(|| a.0.total_cmp(&b.0)));
         found.dedup_by(|a, b| a.1 == b.1);
+        found.sort_by(|a, b| a.0.total_cmp(&b.0).then_with(|| a.1.cmp(&b.1)));
         found.into_iter().take(3).map(|(_, s)| s).collect()
     }
 }

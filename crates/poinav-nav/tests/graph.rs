@@ -181,4 +181,22 @@ fn a_door_into_a_walled_in_room_without_a_space_is_no_entrance() {
         json["nodes"][closet.node]["exterior"].as_bool(),
         Some(false)
     );
+    // The grid decides it and paints no apron for it: with a 1.5 m apron, one would reach
+    // past the closet's back wall (y 4.0-4.2) into the outside.
+    let mut options = NavOptions::default();
+    options.grid.entrance_apron_m = 1.5;
+    let nav = Navigator::new(&building, &RobotProfile::paper(), &options).unwrap();
+    let g = &nav.floors[0].grid.occupancy;
+    assert!(g.doors[0].walled_in && !g.doors[1].walled_in);
+    let at = |x: f64, y: f64| g.cells[g.cell_of(glam::DVec2::new(x, y)).unwrap()];
+    assert_eq!(
+        at(1.5, 4.4),
+        poinav_nav::CellState::Unknown,
+        "outside behind the closet"
+    );
+    assert_eq!(
+        at(5.0, 1.5),
+        poinav_nav::CellState::Free,
+        "the front door's apron"
+    );
 }

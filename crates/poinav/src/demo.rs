@@ -169,9 +169,9 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     // widened one.
     let paper = RobotProfile::paper();
     let mut times = Vec::new();
-    for (design, file, dir) in [
-        ("first design", &building, "navigation"),
-        ("widened design", &wide, "navigation-wide"),
+    for (design, file, dir, bundle) in [
+        ("first design", &building, "navigation", false),
+        ("widened design", &wide, "navigation-wide", true),
     ] {
         let dir = out.join(dir);
         std::fs::create_dir_all(&dir).with_context(|| format!("creating {}", dir.display()))?;
@@ -208,10 +208,13 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
             doors.join(", "),
             dir.file_name().unwrap_or_default().to_string_lossy()
         );
-        if design == "widened design" {
-            let bundle = out.join("nav2");
-            let summary =
-                poinav_nav::write_bundle(&b, &paper, &poinav_nav::Nav2Options::default(), &bundle)?;
+        if bundle {
+            let summary = poinav_nav::write_bundle(
+                &b,
+                &paper,
+                &poinav_nav::Nav2Options::default(),
+                &out.join("nav2"),
+            )?;
             write!(
                 detail,
                 "; Nav2 bundle ({} storey, route graph {} nodes): nav2/",
