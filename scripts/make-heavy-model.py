@@ -31,6 +31,11 @@ the same bytes: GlobalIds come from the seed, timestamps are fixed):
   Chairs, about 3/4 of the dining tables and half of the sofas and plants are shared through
   IfcRepresentationMap + IfcMappedItem (with an IfcFurnitureType); counters, coffee tables and
   the rest are unique breps.
+  As in exported files, furniture vertices are not exactly where the procedure puts them:
+  each moves by up to --noise feet (default 1e-6 ft = 0.3 um, what single-precision meshes
+  carry at these coordinates; written with 9 decimals), so nominally vertical faces are not
+  exactly vertical and project to needle-thin triangles instead of nothing (what makes floor
+  plans of real models slow). --noise 0 writes the exact procedure (4 decimals).
 
 --small keeps the building (same storeys, spaces, walls, doors, stairs) and furnishes only one
 dining room and one lounge (~2 MB, for tests); --furnished-rooms N furnishes the first N rooms.
@@ -130,14 +135,19 @@ def box(x0, y0, z0, dx, dy, dz, nx, ny, nz):
                     idx[ua] = i + du
                     idx[va] = j + dv
                     corners.append(lat(idx))
-                p.quad(*corners)
+                if top:
+                    p.quad(*corners)
+                else:  # the other diagonal, as independent tessellations of faces have
+                    p.quad(corners[1], corners[2], corners[3], corners[0])
     return p
 
 
 def cylinder(cx, cy, z0, r, h, seg, rings=1):
     """A vertical cylinder, capped: 2*seg*rings + 2*seg triangles."""
     p = Part()
-    ring = [[p.v(cx + r * math.cos(2 * math.pi * i / seg), cy + r * math.sin(2 * math.pi * i / seg),
+    # Each ring is turned by half a segment from the one below (an anti-prism), as CAD
+    # tessellations are: the caps' fans do not line up in plan.
+    ring = [[p.v(cx + r * math.cos(math.pi * (2 * i + k) / seg), cy + r * math.sin(math.pi * (2 * i + k) / seg),
                  z0 + h * k / rings) for i in range(seg)] for k in range(rings + 1)]
     for k in range(rings):
         for i in range(seg):
@@ -161,8 +171,9 @@ def ellipsoid(cx, cy, cz, rx, ry, rz, seg, stacks):
     for k in range(1, stacks):
         th = math.pi * k / stacks
         s, c = math.sin(th), math.cos(th)
-        rings.append([p.v(cx + rx * s * math.cos(2 * math.pi * i / seg),
-                          cy + ry * s * math.sin(2 * math.pi * i / seg), cz + rz * c)
+        # Turned by half a segment per ring: upper and lower halves do not line up in plan.
+        rings.append([p.v(cx + rx * s * math.cos(math.pi * (2 * i + k) / seg),
+                          cy + ry * s * math.sin(math.pi * (2 * i + k) / seg), cz + rz * c)
                       for i in range(seg)])
     for i in range(seg):
         j = (i + 1) % seg
@@ -237,8 +248,10 @@ def triangles(parts):
 
 
 class Writer:
-    def __init__(self, seed):
+    def __init__(self, seed, noise=0.0):
         self.rng = random.Random(seed)
+        self.noise = noise
+        self.noise_rng = random.Random(seed * 104729 + 3)
         self.guid_rng = random.Random(seed * 7919 + 1)
         self.f = ifcopenshell.file(schema="IFC2X3")
         self.counts = {}
@@ -477,7 +490,15 @@ class Writer:
     def brep_items(self, parts):
         items = []
         for p in parts:
-            pts = [self.c("IfcCartesianPoint", v) for v in p.verts]
+            if self.noise > 0:
+                # Exporters write tessellated bodies through transforms and per-face
+                # tessellation: a nominally vertical edge's two ends are not bit-identical.
+                # Each (shared) vertex moves by up to `noise` feet, so shells stay closed.
+                n, r = self.noise, self.noise_rng
+                verts = [tuple(round(c + r.uniform(-n, n), 9) for c in v) for v in p.verts]
+            else:
+                verts = p.verts
+            pts = [self.c("IfcCartesianPoint", v) for v in verts]
             faces = [self.c("IfcFace", [self.c("IfcFaceOuterBound",
                                                self.c("IfcPolyLoop", [pts[a], pts[b], pts[c]]), True)])
                      for a, b, c in p.tris]
@@ -571,7 +592,7 @@ def lounge(w, storey, rect, shared, small=False):
 
 
 def build(args):
-    w = Writer(args.seed)
+    w = Writer(args.seed, args.noise)
     name = "Heavy furnished building (ft)"
     w.setup(name)
     w.make_door_style()
@@ -703,6 +724,8 @@ def main():
     ap.add_argument("--storeys", type=int, default=4, help="occupied storeys (a Roof storey is added)")
     ap.add_argument("--furnished-rooms", type=int, default=None,
                     help="furnish only the first N dining rooms/lounges (default: all)")
+    ap.add_argument("--noise", type=float, default=1e-6, metavar="FT",
+                    help="largest offset of a furniture vertex from its exact place, feet (default 1e-6; 0: exact)")
     ap.add_argument("--small", action="store_true", help="furnish one dining room and one lounge (~2 MB)")
     args = ap.parse_args()
     if args.storeys < 1:
