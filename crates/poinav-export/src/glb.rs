@@ -22,12 +22,14 @@
 //! more correct — the Khronos glTF-Validator is the check (see this crate's tests). Keys are
 //! written in sorted order, so the same scene gives the same bytes.
 
+use std::io::Write;
 use std::path::Path;
 
+use rustc_hash::FxHashMap;
 use serde_json::{json, Map, Value};
 
 use crate::palette::srgb_to_linear;
-use crate::scene::{prepare, SceneInput};
+use crate::scene::{prepare_with, Element, SceneInput};
 use crate::ExportError;
 
 /// `glTF` magic, little-endian.
@@ -52,61 +54,164 @@ fn num(v: f32) -> Value {
     json!(f64::from(v))
 }
 
-fn push_f32s(bin: &mut Vec<u8>, values: &[[f32; 3]]) {
-    for v in values.iter().flatten() {
-        bin.extend_from_slice(&v.to_le_bytes());
+/// One element's geometry with flat normals: a vertex is shared only by triangles of the same
+/// plane (same normal bits), so normals can be per vertex.
+struct Flat {
+    positions: Vec<[f32; 3]>,
+    normals: Vec<[f32; 3]>,
+    indices: Vec<u32>,
+}
+
+/// Splits `e`'s vertices by triangle normal, taking its geometry (nothing else reads it
+/// afterwards). `seen` is scratch space, reused across elements: (vertex, normal bits) to the
+/// new vertex, numbered in order of first use, so the output does not depend on the hasher.
+fn flatten(e: &mut Element<'_>, seen: &mut FxHashMap<(u32, [u32; 3]), u32>) -> Flat {
+    let positions = std::mem::take(&mut e.positions);
+    let triangles = std::mem::take(&mut e.triangles);
+    let normals = std::mem::take(&mut e.normals);
+    seen.clear();
+    seen.reserve(positions.len());
+    let mut f = Flat {
+        positions: Vec::with_capacity(positions.len()),
+        normals: Vec::with_capacity(positions.len()),
+        indices: Vec::with_capacity(triangles.len() * 3),
+    };
+    for (t, n) in triangles.iter().zip(&normals) {
+        let bits = n.map(f32::to_bits);
+        for &i in t {
+            let idx = *seen.entry((i, bits)).or_insert_with(|| {
+                f.positions.push(positions[i as usize]);
+                f.normals.push(*n);
+                (f.positions.len() - 1) as u32
+            });
+            f.indices.push(idx);
+        }
+    }
+    f.positions.shrink_to_fit();
+    f.normals.shrink_to_fit();
+    f
+}
+
+/// A prepared GLB: its JSON chunk (padded) and the element geometry its BIN chunk holds.
+struct Document {
+    json: Vec<u8>,
+    flats: Vec<Flat>,
+    /// Unpadded length of the BIN chunk's data.
+    bin_len: usize,
+}
+
+impl Document {
+    /// Prepares `scene`: each element is localised and flattened in turn, so the scene's
+    /// geometry is held once (as [`Flat`]s), and the JSON is serialised.
+    fn new(scene: &SceneInput<'_>) -> Document {
+        let (value, flats, bin_len) = json_and_flats(scene);
+        let mut json = serde_json::to_vec(&value).expect("serialising JSON to memory");
+        drop(value);
+        while json.len() % 4 != 0 {
+            json.push(b' ');
+        }
+        Document {
+            json,
+            flats,
+            bin_len,
+        }
+    }
+
+    /// Total GLB length in bytes.
+    fn len(&self) -> usize {
+        let bin = if self.bin_len == 0 {
+            0
+        } else {
+            8 + self.bin_len.next_multiple_of(4)
+        };
+        12 + 8 + self.json.len() + bin
+    }
+
+    /// Writes the GLB: a 12-byte header, the JSON chunk (padded with spaces to 4 bytes) and,
+    /// when there is geometry, the BIN chunk (positions, normals, indices; padded with zeros).
+    fn write(&self, w: &mut impl Write) -> std::io::Result<()> {
+        let mut head = Vec::with_capacity(28);
+        head.extend_from_slice(&GLB_MAGIC.to_le_bytes());
+        head.extend_from_slice(&2u32.to_le_bytes());
+        head.extend_from_slice(&(self.len() as u32).to_le_bytes());
+        head.extend_from_slice(&(self.json.len() as u32).to_le_bytes());
+        head.extend_from_slice(&CHUNK_JSON.to_le_bytes());
+        w.write_all(&head)?;
+        w.write_all(&self.json)?;
+        if self.bin_len == 0 {
+            return Ok(());
+        }
+        let padded = self.bin_len.next_multiple_of(4);
+        head.clear();
+        head.extend_from_slice(&(padded as u32).to_le_bytes());
+        head.extend_from_slice(&CHUNK_BIN.to_le_bytes());
+        w.write_all(&head)?;
+        let mut buf = ChunkBuffer::new(w);
+        for f in &self.flats {
+            buf.f32s(f.positions.iter().flatten())?;
+        }
+        for f in &self.flats {
+            buf.f32s(f.normals.iter().flatten())?;
+        }
+        for f in &self.flats {
+            for i in &f.indices {
+                buf.bytes(&i.to_le_bytes())?;
+            }
+        }
+        buf.bytes(&[0; 3][..padded - self.bin_len])?;
+        buf.flush()
     }
 }
 
-/// The glTF JSON document and its binary buffer.
-fn document(scene: &SceneInput<'_>) -> (Value, Vec<u8>) {
-    let p = prepare(scene);
-    // Flat shading: split each element's vertices by triangle normal.
-    struct Flat {
-        positions: Vec<[f32; 3]>,
-        normals: Vec<[f32; 3]>,
-        indices: Vec<u32>,
-    }
-    let flats: Vec<Flat> = p
-        .elements
-        .iter()
-        .map(|e| {
-            let mut seen = std::collections::HashMap::new();
-            let mut f = Flat {
-                positions: Vec::new(),
-                normals: Vec::new(),
-                indices: Vec::with_capacity(e.triangles.len() * 3),
-            };
-            for (t, n) in e.triangles.iter().zip(&e.normals) {
-                for &i in t {
-                    let key = (i, n.map(f32::to_bits));
-                    let idx = *seen.entry(key).or_insert_with(|| {
-                        f.positions.push(e.positions[i as usize]);
-                        f.normals.push(*n);
-                        (f.positions.len() - 1) as u32
-                    });
-                    f.indices.push(idx);
-                }
-            }
-            f
-        })
-        .collect();
-    let n_pos: usize = flats.iter().map(|f| f.positions.len()).sum();
-    let n_idx: usize = flats.iter().map(|f| f.indices.len()).sum();
-    let mut bin = Vec::with_capacity(n_pos * 24 + n_idx * 4);
-    for f in &flats {
-        push_f32s(&mut bin, &f.positions);
-    }
-    let normals_at = bin.len();
-    for f in &flats {
-        push_f32s(&mut bin, &f.normals);
-    }
-    let indices_at = bin.len();
-    for f in &flats {
-        for i in &f.indices {
-            bin.extend_from_slice(&i.to_le_bytes());
+/// Little-endian values collected into 64 KiB blocks before they reach the writer.
+struct ChunkBuffer<'w, W: Write> {
+    w: &'w mut W,
+    buf: Vec<u8>,
+}
+
+impl<'w, W: Write> ChunkBuffer<'w, W> {
+    const SIZE: usize = 1 << 16;
+
+    fn new(w: &'w mut W) -> Self {
+        ChunkBuffer {
+            w,
+            buf: Vec::with_capacity(Self::SIZE),
         }
     }
+
+    fn bytes(&mut self, b: &[u8]) -> std::io::Result<()> {
+        if self.buf.len() + b.len() > Self::SIZE {
+            self.flush()?;
+        }
+        self.buf.extend_from_slice(b);
+        Ok(())
+    }
+
+    fn f32s<'v>(&mut self, values: impl Iterator<Item = &'v f32>) -> std::io::Result<()> {
+        for v in values {
+            self.bytes(&v.to_le_bytes())?;
+        }
+        Ok(())
+    }
+
+    fn flush(&mut self) -> std::io::Result<()> {
+        self.w.write_all(&self.buf)?;
+        self.buf.clear();
+        Ok(())
+    }
+}
+
+/// The glTF JSON document, the flattened geometry and the BIN data's length.
+fn json_and_flats(scene: &SceneInput<'_>) -> (Value, Vec<Flat>, usize) {
+    let mut flats = Vec::with_capacity(scene.elements.len());
+    let mut seen = FxHashMap::default();
+    let p = prepare_with(scene, |e| flats.push(flatten(e, &mut seen)));
+    drop(seen);
+    let n_pos: usize = flats.iter().map(|f| f.positions.len()).sum();
+    let n_idx: usize = flats.iter().map(|f| f.indices.len()).sum();
+    let normals_at = n_pos * 12;
+    let indices_at = normals_at + n_pos * 12;
+    let bin_len = indices_at + n_idx * 4;
 
     let mut accessors = Vec::new();
     let mut meshes = Vec::new();
@@ -258,7 +363,7 @@ fn document(scene: &SceneInput<'_>) -> (Value, Vec<u8>) {
     put("meshes", meshes);
     put("materials", materials);
     put("accessors", accessors);
-    if !bin.is_empty() {
+    if bin_len > 0 {
         put(
             "bufferViews",
             vec![
@@ -268,51 +373,34 @@ fn document(scene: &SceneInput<'_>) -> (Value, Vec<u8>) {
                        "byteLength": indices_at - normals_at,
                        "byteStride": 12, "target": ARRAY_BUFFER}),
                 json!({"buffer": 0, "byteOffset": indices_at,
-                       "byteLength": bin.len() - indices_at,
+                       "byteLength": bin_len - indices_at,
                        "target": ELEMENT_ARRAY_BUFFER}),
             ],
         );
-        put("buffers", vec![json!({"byteLength": bin.len()})]);
+        put("buffers", vec![json!({"byteLength": bin_len})]);
     }
-    (Value::Object(doc), bin)
+    (Value::Object(doc), flats, bin_len)
 }
 
 /// The glTF JSON of `scene` alone (the document the GLB's JSON chunk holds).
 pub fn to_gltf_json(scene: &SceneInput<'_>) -> serde_json::Value {
-    document(scene).0
+    json_and_flats(scene).0
 }
 
 /// The GLB bytes of `scene`: a 12-byte header, the JSON chunk (padded with spaces to 4 bytes)
 /// and, when there is geometry, the BIN chunk (padded with zeros to 4 bytes).
 pub fn to_glb(scene: &SceneInput<'_>) -> Vec<u8> {
-    let (doc, bin) = document(scene);
-    let mut json = serde_json::to_vec(&doc).expect("serialising JSON to memory");
-    while json.len() % 4 != 0 {
-        json.push(b' ');
-    }
-    let mut bin = bin;
-    while bin.len() % 4 != 0 {
-        bin.push(0);
-    }
-    let total = 12 + 8 + json.len() + if bin.is_empty() { 0 } else { 8 + bin.len() };
-    let mut out = Vec::with_capacity(total);
-    out.extend_from_slice(&GLB_MAGIC.to_le_bytes());
-    out.extend_from_slice(&2u32.to_le_bytes());
-    out.extend_from_slice(&(total as u32).to_le_bytes());
-    out.extend_from_slice(&(json.len() as u32).to_le_bytes());
-    out.extend_from_slice(&CHUNK_JSON.to_le_bytes());
-    out.extend_from_slice(&json);
-    if !bin.is_empty() {
-        out.extend_from_slice(&(bin.len() as u32).to_le_bytes());
-        out.extend_from_slice(&CHUNK_BIN.to_le_bytes());
-        out.extend_from_slice(&bin);
-    }
+    let doc = Document::new(scene);
+    let mut out = Vec::with_capacity(doc.len());
+    doc.write(&mut out).expect("writing to memory");
     out
 }
 
-/// Writes the GLB of `scene` to `path` atomically.
+/// Writes the GLB of `scene` to `path` atomically, streaming the geometry to the file (the
+/// whole GLB is never built in memory).
 pub fn write_glb(path: &Path, scene: &SceneInput<'_>) -> Result<(), ExportError> {
-    poinav_ifc::output::write_atomic(path, &to_glb(scene)).map_err(|e| ExportError::Write {
+    let doc = Document::new(scene);
+    poinav_ifc::output::write_atomic_with(path, |w| doc.write(w)).map_err(|e| ExportError::Write {
         path: path.display().to_string(),
         message: e.to_string(),
     })

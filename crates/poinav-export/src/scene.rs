@@ -25,6 +25,7 @@ use poinav_geom::ElementMesh;
 use poinav_ifc::spatial::Storey;
 use poinav_ifc::EntityId;
 use poinav_poi::{Classification, Classified};
+use rustc_hash::FxHashMap;
 
 use crate::palette;
 
@@ -175,7 +176,8 @@ fn localise(mesh: &poinav_geom::Mesh) -> Local {
         }
     }
     let pivot = DVec3::new((lo.x + hi.x) / 2.0, lo.y, (lo.z + hi.z) / 2.0);
-    let mut index: HashMap<[u32; 3], u32> = HashMap::new();
+    let mut index: FxHashMap<[u32; 3], u32> = FxHashMap::default();
+    index.reserve(usable.len());
     let mut positions = Vec::new();
     let mut triangles = Vec::with_capacity(usable.len());
     let mut normals = Vec::with_capacity(usable.len());
@@ -200,6 +202,16 @@ fn localise(mesh: &poinav_geom::Mesh) -> Local {
 
 /// Prepares `scene` for writing.
 pub(crate) fn prepare<'a>(scene: &SceneInput<'a>) -> Prepared<'a> {
+    prepare_with(scene, |_| {})
+}
+
+/// Like [`prepare`], handing each element to `each` as soon as it is ready, before the next
+/// one is localised: a writer may take the element's geometry there (its `material` still
+/// tells whether it had triangles), so the whole scene's geometry is never held twice.
+pub(crate) fn prepare_with<'a>(
+    scene: &SceneInput<'a>,
+    mut each: impl FnMut(&mut Element<'a>),
+) -> Prepared<'a> {
     let mut groups: Vec<Group<'a>> = Vec::new();
     let mut by_storey: HashMap<EntityId, usize> = HashMap::new();
     for s in scene.storeys {
@@ -250,7 +262,7 @@ pub(crate) fn prepare<'a>(scene: &SceneInput<'a>) -> Prepared<'a> {
             Some(n) if !n.trim().is_empty() => n.clone(),
             _ => e.class.clone(),
         };
-        elements.push(Element {
+        let mut element = Element {
             source: e,
             label,
             storey_name: group.and_then(|g| groups[g].storey?.name.as_deref()),
@@ -260,7 +272,9 @@ pub(crate) fn prepare<'a>(scene: &SceneInput<'a>) -> Prepared<'a> {
             triangles,
             normals,
             material,
-        });
+        };
+        each(&mut element);
+        elements.push(element);
     }
     if !loose.is_empty() {
         groups.push(Group {

@@ -4,6 +4,7 @@
 use rayon::prelude::*;
 use rustc_hash::{FxHashMap, FxHashSet};
 
+use crate::arg_index::ArgIndex;
 use crate::diagnostic::DiagnosticKind;
 use crate::model::Model;
 use crate::EntityId;
@@ -19,10 +20,19 @@ struct Shape {
     dangling: Vec<u64>,
     /// The first bare word standing as a value (`NaN`, `inf`, `T`): not STEP.
     bare: Option<(usize, usize)>,
+    /// The first string holding an escape that is not a directive (read literally): where its
+    /// content starts and the escape's offset in it.
+    bad_escape: Option<(usize, usize)>,
+    /// The opening quote of a string that is never closed.
+    unclosed: Option<usize>,
 }
 
 /// Walks one argument list byte by byte; `exists` tells whether a referenced id is defined.
-fn shape(args: &[u8], exists: impl Fn(u64) -> bool) -> Shape {
+/// Appends the list's top-level separators to `seps` (see [`ArgIndex`]): the opening `(`,
+/// each top-level `,` and the closing `)`; only the `(` for a list without values, nothing
+/// for an unbalanced list.
+fn shape(args: &[u8], exists: impl Fn(u64) -> bool, seps: &mut Vec<u32>) -> Shape {
+    let mark = seps.len();
     let mut depth = 0usize;
     let mut max_depth = 0usize;
     let mut max_ref = 0u64;
@@ -34,6 +44,10 @@ fn shape(args: &[u8], exists: impl Fn(u64) -> bool) -> Shape {
     // At the start of a value (after `(` or `,`), where a bare word is not STEP.
     let mut fresh = false;
     let mut bare = None;
+    // The first string with an escape that is not a directive: (content offset, offset in it).
+    let mut bad_escape = None;
+    // The opening quote of a string that never closes.
+    let mut unclosed = None;
     while i < args.len() {
         let c = args[i];
         if fresh && !matches!(c, b' ' | b'\t' | b'\r' | b'\n') {
@@ -59,18 +73,21 @@ fn shape(args: &[u8], exists: impl Fn(u64) -> bool) -> Shape {
         match c {
             b'\'' => {
                 saw_value = true;
-                let mut j = i + 1;
-                loop {
-                    match memchr::memchr(b'\'', &args[j.min(args.len())..]) {
-                        Some(q) if args.get(j + q + 1) == Some(&b'\'') => j += q + 2,
-                        Some(q) => {
-                            i = j + q + 1;
-                            break;
+                match crate::string::literal_end(args, i) {
+                    Some(q) => {
+                        let raw = &args[i + 1..q];
+                        if bad_escape.is_none() && memchr::memchr(b'\\', raw).is_some() {
+                            if let Err(crate::string::StringError::BadEscape(at)) =
+                                crate::string::check_escapes(raw)
+                            {
+                                bad_escape = Some((i + 1, at));
+                            }
                         }
-                        None => {
-                            i = args.len();
-                            break;
-                        }
+                        i = q + 1;
+                    }
+                    None => {
+                        unclosed = Some(i);
+                        i = args.len();
                     }
                 }
                 continue;
@@ -83,6 +100,8 @@ fn shape(args: &[u8], exists: impl Fn(u64) -> bool) -> Shape {
             b'(' => {
                 if depth >= 1 {
                     saw_value = true;
+                } else {
+                    seps.push(i as u32);
                 }
                 depth += 1;
                 max_depth = max_depth.max(depth);
@@ -95,6 +114,7 @@ fn shape(args: &[u8], exists: impl Fn(u64) -> bool) -> Shape {
                 }
                 depth -= 1;
                 if depth == 0 {
+                    seps.push(i as u32);
                     closed_at = Some(i);
                     break;
                 }
@@ -102,6 +122,7 @@ fn shape(args: &[u8], exists: impl Fn(u64) -> bool) -> Shape {
             b',' => {
                 if depth == 1 {
                     commas += 1;
+                    seps.push(i as u32);
                 }
                 fresh = true;
             }
@@ -140,6 +161,11 @@ fn shape(args: &[u8], exists: impl Fn(u64) -> bool) -> Shape {
         i += 1;
     }
     let balanced = closed_at.is_some_and(|c| args[c + 1..].iter().all(u8::is_ascii_whitespace));
+    if !balanced || u32::try_from(args.len()).is_err() {
+        seps.truncate(mark);
+    } else if !saw_value {
+        seps.truncate(mark + 1);
+    }
     Shape {
         attrs: if saw_value { commas + 1 } else { 0 },
         balanced,
@@ -147,25 +173,53 @@ fn shape(args: &[u8], exists: impl Fn(u64) -> bool) -> Shape {
         max_ref,
         dangling,
         bare,
+        bad_escape,
+        unclosed,
     }
 }
 
+/// What [`structure`] finds besides problems.
+pub(crate) struct Structure {
+    /// Per instance, the largest `#id` its arguments mention (new ids must stay above these,
+    /// or an edit could make a dangling reference point at a new instance).
+    pub(crate) max_refs: Vec<u64>,
+    /// Where each instance's attribute values lie.
+    pub(crate) args: ArgIndex,
+}
+
+/// One chunk's results: problems, max refs, separators and each instance's separator count.
+type ChunkResult = (Vec<Problem>, Vec<u64>, Vec<u32>, Vec<u32>);
+
 /// Dangling references, wrong attribute counts and unbalanced argument lists, checked in
-/// parallel; also returns, per instance, the largest `#id` its arguments mention (new ids must
-/// stay above these, or an edit could make a dangling reference point at a new instance).
-pub(crate) fn structure(model: &Model) -> (Vec<Problem>, Vec<u64>) {
+/// parallel; the same walk records what [`Structure`] holds.
+pub(crate) fn structure(model: &Model) -> (Vec<Problem>, Structure) {
     let schema = model.schema();
     let bytes = model.bytes();
-    let parts: Vec<(Vec<Problem>, Vec<u64>)> = model
+    let parts: Vec<ChunkResult> = model
         .instances
         .par_chunks(4096)
         .map(|chunk| {
             let mut out = Vec::new();
             let mut max_refs = Vec::with_capacity(chunk.len());
+            let mut seps = Vec::with_capacity(chunk.len() * 8);
+            let mut counts = Vec::with_capacity(chunk.len());
             for inst in chunk {
                 let args = &bytes[inst.args..inst.end - 1];
-                let s = shape(args, |id| model.entity(EntityId(id)).is_some());
+                let before = seps.len();
+                let s = shape(args, |id| model.entity(EntityId(id)).is_some(), &mut seps);
+                counts.push((seps.len() - before) as u32);
                 max_refs.push(s.max_ref);
+                if let Some(at) = s.unclosed {
+                    out.push((
+                        DiagnosticKind::Syntax,
+                        Some(inst.id),
+                        inst.start,
+                        format!(
+                            "the string opened at byte {at} of the arguments is never closed; the instance is read up to the next `;`, and its attributes cannot be read"
+                        ),
+                    ));
+                    continue;
+                }
                 if !s.balanced {
                     out.push((
                         DiagnosticKind::Syntax,
@@ -174,6 +228,20 @@ pub(crate) fn structure(model: &Model) -> (Vec<Problem>, Vec<u64>) {
                         "unbalanced parentheses in the argument list".to_string(),
                     ));
                     continue;
+                }
+                if let Some((content, at)) = s.bad_escape {
+                    let rest = &args[content + at..];
+                    let len = rest.iter().take(6).take_while(|&&c| c != b'\'').count();
+                    let shown = &rest[..len];
+                    out.push((
+                        DiagnosticKind::BadValue,
+                        Some(inst.id),
+                        inst.start,
+                        format!(
+                            "a string holds `{}`, which is not a STEP escape; it is read as written",
+                            String::from_utf8_lossy(shown)
+                        ),
+                    ));
                 }
                 if s.max_depth > crate::value::MAX_NESTING {
                     out.push((
@@ -239,16 +307,26 @@ pub(crate) fn structure(model: &Model) -> (Vec<Problem>, Vec<u64>) {
                     ));
                 }
             }
-            (out, max_refs)
+            (out, max_refs, seps, counts)
         })
         .collect();
     let mut problems = Vec::new();
     let mut max_refs = Vec::with_capacity(model.instances.len());
-    for (p, m) in parts {
-        problems.extend(p);
-        max_refs.extend(m);
+    let total = parts.iter().map(|p| p.2.len()).sum();
+    for (p, m, _, _) in &parts {
+        problems.extend_from_slice(p);
+        max_refs.extend_from_slice(m);
     }
-    (problems, max_refs)
+    let per_instance = parts.iter().flat_map(|(_, _, seps, counts)| {
+        let mut at = 0usize;
+        counts.iter().map(move |&n| {
+            let s = &seps[at..at + n as usize];
+            at += n as usize;
+            (n > 0).then_some(s)
+        })
+    });
+    let args = ArgIndex::from_parts(per_instance, total).unwrap_or_default();
+    (problems, Structure { max_refs, args })
 }
 
 /// One diagnostic per instance whose bytes are not valid UTF-8.
@@ -409,12 +487,25 @@ mod tests {
 
     #[test]
     fn shape_counts_top_level_attributes_and_dangling_refs() {
-        let s = shape(b"('a,b',(#1,#2),$,#9)", |id| id < 5);
+        let mut seps = Vec::new();
+        let s = shape(b"('a,b',(#1,#2),$,#9)", |id| id < 5, &mut seps);
         assert_eq!((s.attrs, s.balanced, s.dangling), (4, true, vec![9]));
-        let s = shape(b"()", |_| true);
+        assert_eq!(seps, [0, 6, 14, 16, 19]);
+        seps.clear();
+        let s = shape(b"( ) ", |_| true, &mut seps);
         assert_eq!((s.attrs, s.balanced), (0, true));
-        assert!(!shape(b"((1,2)", |_| true).balanced);
-        assert!(!shape(b"(1))", |_| true).balanced);
+        assert_eq!(seps, [0], "a list without values keeps only its `(`");
+        seps.clear();
+        assert!(!shape(b"((1,2)", |_| true, &mut seps).balanced);
+        assert!(!shape(b"(1))", |_| true, &mut seps).balanced);
+        assert!(seps.is_empty(), "unbalanced lists keep no separators");
+        let s = shape(
+            b"( 'x/*,*/' /* a, comment */ ,\"0,\",IFCLABEL('a,b'))",
+            |_| true,
+            &mut seps,
+        );
+        assert_eq!(s.attrs, 3);
+        assert_eq!(seps, [0, 28, 33, 49]);
     }
 
     #[test]

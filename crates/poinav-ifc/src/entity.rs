@@ -143,7 +143,12 @@ impl<'m> Entity<'m> {
 
     /// The attribute at STEP position `index` (`Ok(None)` when the instance has fewer).
     pub fn attr_at(&self, index: usize) -> Result<Option<Value<'m>>, AttrError> {
-        value::parse_arg(self.raw_args(), index).map_err(|e| self.malformed(e))
+        let args = self.raw_args();
+        match self.model.arg_separators(self.position()) {
+            Some(seps) => value::parse_arg_between(args, seps, index),
+            None => value::parse_arg(args, index),
+        }
+        .map_err(|e| self.malformed(e))
     }
 
     /// STEP position of attribute `name` for this instance's type.

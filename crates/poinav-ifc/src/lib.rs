@@ -16,6 +16,7 @@
 //! ```
 
 mod arg;
+mod arg_index;
 mod check;
 mod diagnostic;
 mod editor;

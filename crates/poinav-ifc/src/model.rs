@@ -6,6 +6,7 @@ use std::sync::{Arc, Mutex, OnceLock};
 
 use rustc_hash::FxHashMap;
 
+use crate::arg_index::ArgIndex;
 use crate::check;
 use crate::diagnostic::{Diagnostic, DiagnosticKind};
 use crate::entity::Entity;
@@ -58,6 +59,8 @@ pub struct Model {
     data_end: usize,
     /// Per instance, the largest `#id` its arguments mention.
     max_refs: Vec<u64>,
+    /// Where each instance's attribute values lie.
+    args: ArgIndex,
     lines: OnceLock<LineTable>,
     by_type: OnceLock<Vec<Vec<u32>>>,
     inverses: Mutex<FxHashMap<(TypeId, usize), Arc<InverseIndex>>>,
@@ -137,13 +140,15 @@ impl Model {
             diagnostics: Vec::new(),
             data_end: scanned.data_end,
             max_refs: Vec::new(),
+            args: ArgIndex::default(),
             lines: OnceLock::new(),
             by_type: OnceLock::new(),
             inverses: Mutex::new(FxHashMap::default()),
         };
-        let (problems, max_refs) = check::structure(&model);
+        let (problems, structure) = check::structure(&model);
         diagnostics.extend(problems);
-        model.max_refs = max_refs;
+        model.max_refs = structure.max_refs;
+        model.args = structure.args;
         diagnostics.extend(check::non_utf8(&model));
         diagnostics.extend(check::cycles(&model));
         model.diagnostics = model.finish_diagnostics(diagnostics);
@@ -237,6 +242,12 @@ impl Model {
             .id
             .0
             .max(self.max_refs.get(position).copied().unwrap_or(0))
+    }
+
+    /// The top-level separators of the argument list of the instance at `position` (see
+    /// [`ArgIndex`]), or `None` when they were not recorded.
+    pub(crate) fn arg_separators(&self, position: usize) -> Option<&[u32]> {
+        self.args.separators(position)
     }
 
     /// The instance `#id`, if it exists.

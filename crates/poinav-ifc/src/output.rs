@@ -3,22 +3,37 @@
 //! `.poinav-<pid>-<random>.tmp`; one left behind by a process that was killed (SIGKILL cannot be
 //! caught) is removed by the next write into the same folder once that process is gone.
 
-use std::io::Write;
+use std::fs::File;
+use std::io::{BufWriter, Write};
 use std::path::Path;
 
 /// Writes `bytes` to `path` atomically (temporary file in the same folder, synced, renamed).
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    write_atomic_with(path, |w| w.write_all(bytes))
+}
+
+/// Like [`write_atomic`], for output produced piece by piece: `write` streams it into a
+/// buffered writer on the temporary file, which becomes `path` only when `write` succeeds (an
+/// error leaves `path` untouched and removes the temporary file).
+pub fn write_atomic_with(
+    path: &Path,
+    write: impl FnOnce(&mut BufWriter<&File>) -> std::io::Result<()>,
+) -> std::io::Result<()> {
     let dir = match path.parent() {
         Some(p) if !p.as_os_str().is_empty() => p,
         _ => Path::new("."),
     };
     sweep_stale(dir);
     let prefix = format!(".poinav-{}-", std::process::id());
-    let mut tmp = tempfile::Builder::new()
+    let tmp = tempfile::Builder::new()
         .prefix(&prefix)
         .suffix(".tmp")
         .tempfile_in(dir)?;
-    tmp.write_all(bytes)?;
+    {
+        let mut w = BufWriter::with_capacity(1 << 16, tmp.as_file());
+        write(&mut w)?;
+        w.flush()?;
+    }
     tmp.as_file().sync_all()?;
     #[cfg(unix)]
     {
@@ -76,6 +91,26 @@ mod tests {
             .map(|e| e.unwrap().file_name())
             .collect();
         assert_eq!(names, vec![std::ffi::OsString::from("out.ifc")]);
+    }
+
+    #[test]
+    fn a_failed_streamed_write_leaves_the_target_untouched() {
+        let dir = tempfile::tempdir().unwrap();
+        let target = dir.path().join("out.glb");
+        write_atomic_with(&target, |w| {
+            w.write_all(b"head")?;
+            w.write_all(&[7; 100_000])
+        })
+        .unwrap();
+        assert_eq!(std::fs::metadata(&target).unwrap().len(), 100_004);
+        let err = write_atomic_with(&target, |w| {
+            w.write_all(b"partial")?;
+            Err(std::io::Error::other("disk on fire"))
+        })
+        .unwrap_err();
+        assert_eq!(err.to_string(), "disk on fire");
+        assert_eq!(std::fs::metadata(&target).unwrap().len(), 100_004);
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
     }
 
     #[test]

@@ -80,19 +80,10 @@ pub(crate) fn find_record_end(
         let k = pos + k;
         match bytes[k] {
             b';' => return Ok(k),
-            b'\'' => {
-                let mut i = k + 1;
-                loop {
-                    match memchr::memchr(b'\'', &bytes[i.min(bytes.len())..]) {
-                        Some(q) if bytes.get(i + q + 1) == Some(&b'\'') => i += q + 2,
-                        Some(q) => {
-                            pos = i + q + 1;
-                            break;
-                        }
-                        None => return Err((ReadErrorKind::UnterminatedString, k)),
-                    }
-                }
-            }
+            b'\'' => match crate::string::literal_end(bytes, k) {
+                Some(q) => pos = q + 1,
+                None => return Err((ReadErrorKind::UnterminatedString, k)),
+            },
             _ => {
                 if bytes.get(k + 1) == Some(&b'*') {
                     match memchr::memmem::find(&bytes[k + 2..], b"*/") {
@@ -217,7 +208,14 @@ fn scan_section<'b>(
             .ok()
             .and_then(|s| s.parse::<u64>().ok());
         let id_for_errors = id.map(EntityId).or(last_id);
-        let end = find_record_end(bytes, i).map_err(|(k, o)| (k, o, id_for_errors))?;
+        let end = match find_record_end(bytes, i) {
+            Ok(end) => end,
+            // A string that never closes damages its own instance only: it ends at the last
+            // `;` before the next line that starts an instance (the check reports it).
+            Err((ReadErrorKind::UnterminatedString, k)) => end_of_damaged_record(bytes, start)
+                .ok_or((ReadErrorKind::UnterminatedString, k, id_for_errors))?,
+            Err((k, o)) => return Err((k, o, id_for_errors)),
+        };
         *pos = end + 1;
         let Some(id) = id else {
             out.problems.push((
@@ -295,6 +293,31 @@ fn scan_section<'b>(
     }
 }
 
+/// For the record starting at `open` in which a string never closes: the last `;` before the
+/// next line that starts with `#<digits>=` or `ENDSEC`, when there is one after `open`.
+fn end_of_damaged_record(bytes: &[u8], open: usize) -> Option<usize> {
+    let mut from = open;
+    while let Some(nl) = memchr::memchr(b'\n', &bytes[from..]) {
+        let line = skip_ws(bytes, from + nl + 1);
+        from = line;
+        let starts_record = if bytes[line..].starts_with(b"ENDSEC") {
+            true
+        } else if bytes.get(line) == Some(&b'#') {
+            let digits = bytes[line + 1..]
+                .iter()
+                .take_while(|c| c.is_ascii_digit())
+                .count();
+            digits > 0 && bytes.get(skip_ws(bytes, line + 1 + digits)) == Some(&b'=')
+        } else {
+            false
+        };
+        if starts_record {
+            return memchr::memrchr(b';', &bytes[open..line]).map(|p| open + p);
+        }
+    }
+    None
+}
+
 fn skip_ws(bytes: &[u8], mut i: usize) -> usize {
     while i < bytes.len() && matches!(bytes[i], b' ' | b'\t' | b'\r' | b'\n') {
         i += 1;
@@ -334,6 +357,30 @@ mod tests {
         assert_eq!(id, Some(EntityId(2)));
         let (kind, _, _) = scan(b"DATA;#1=IFCWALL('abc');", 0, Schema::Ifc4).unwrap_err();
         assert!(matches!(kind, ReadErrorKind::Truncated(_)));
+    }
+
+    #[test]
+    fn a_string_that_never_closes_damages_its_own_instance_only() {
+        let data = b"DATA;\n#1=IFCWALL('abc,$);\n#2=IFCWALL('x',$);\n  #3 = IFCDOOR('y');\nENDSEC;\nEND-ISO-10303-21;";
+        let s = scan(data, 0, Schema::Ifc4).unwrap();
+        // `#1`'s string would run to the end of the file; it ends at the last `;` before the
+        // next line that starts an instance, and the others read as usual.
+        let ids: Vec<u64> = s.instances.iter().map(|i| i.id.0).collect();
+        assert_eq!(ids, [1, 2, 3]);
+        assert_eq!(
+            &data[s.instances[0].start..s.instances[0].end],
+            b"#1=IFCWALL('abc,$);"
+        );
+        assert_eq!(
+            &data[s.instances[1].start..s.instances[1].end],
+            b"#2=IFCWALL('x',$);"
+        );
+        // A `\\S\\'` that would end the string before junk does not: the escape wins.
+        let data =
+            b"DATA;#1=IFCWALL('a\\S\\'\\X\\91',$);#2=IFCWALL('C:\\S\\',$);ENDSEC;END-ISO-10303-21;";
+        let s = scan(data, 0, Schema::Ifc4).unwrap();
+        assert_eq!(s.instances.len(), 2);
+        assert!(s.problems.is_empty());
     }
 
     #[test]

@@ -146,6 +146,37 @@ pub fn parse_arg(args: &[u8], index: usize) -> Result<Option<Value<'_>>, ValueEr
     }
 }
 
+/// Parses the `index`-th top-level value of the argument list `args`, whose top-level
+/// separators (`(`, each `,`, `)`) were found beforehand at the offsets `seps`: only that
+/// value's bytes are read. `Ok(None)` when the list has fewer values.
+pub(crate) fn parse_arg_between<'a>(
+    args: &'a [u8],
+    seps: &[u32],
+    index: usize,
+) -> Result<Option<Value<'a>>, ValueError> {
+    let (Some(&from), Some(&to)) = (seps.get(index), seps.get(index + 1)) else {
+        return Ok(None);
+    };
+    let (from, to) = (from as usize + 1, to as usize);
+    if to > args.len() || from > to {
+        return Err(ValueError {
+            offset: from.min(args.len()),
+            message: "argument list changed after it was indexed",
+        });
+    }
+    let mut p = Parser {
+        b: &args[..to],
+        pos: from,
+    };
+    p.ws();
+    let v = p.value(1)?;
+    p.ws();
+    if p.pos != to {
+        return Err(p.err(p.pos, "expected `,` or `)`"));
+    }
+    Ok(Some(v))
+}
+
 /// Byte ranges (within `args`) of each top-level value of the argument list `( ... )`,
 /// without surrounding white space. Used to rewrite one attribute and keep the others' bytes.
 pub fn split_args(args: &[u8]) -> Result<Vec<std::ops::Range<usize>>, ValueError> {
@@ -248,21 +279,13 @@ impl<'a> Parser<'a> {
     }
 
     fn string_end(&self, quote: u8) -> Result<usize, ValueError> {
-        // Returns the index of the closing quote; `''` inside single-quoted strings is an escaped quote.
-        let mut i = self.pos + 1;
-        loop {
-            match memchr::memchr(quote, &self.b[i.min(self.b.len())..]) {
-                Some(q) => {
-                    let q = i + q;
-                    if quote == b'\'' && self.b.get(q + 1) == Some(&b'\'') {
-                        i = q + 2;
-                    } else {
-                        return Ok(q);
-                    }
-                }
-                None => return Err(self.err(self.pos, "unterminated string")),
-            }
-        }
+        // The index of the closing quote (see `string::literal_end` for `''` and `\S\'`).
+        let end = if quote == b'\'' {
+            string::literal_end(self.b, self.pos)
+        } else {
+            memchr::memchr(quote, &self.b[self.pos + 1..]).map(|q| self.pos + 1 + q)
+        };
+        end.ok_or_else(|| self.err(self.pos, "unterminated string"))
     }
 
     fn value(&mut self, depth: usize) -> Result<Value<'a>, ValueError> {
