@@ -71,7 +71,11 @@ fn two_hundred_robots_give_the_same_bytes_on_one_two_and_four_threads() {
     let moved = o.figures.iter().filter(|f| f.travelled > 1.0).count();
     assert!(moved > 100, "{moved} robots moved more than 1 m");
     let count = |kind: &str| o.events().iter().filter(|e| e.kind.tag() == kind).count();
-    assert!(count("clearance") >= 20, "{} clearances", count("clearance"));
+    assert!(
+        count("clearance") >= 20,
+        "{} clearances",
+        count("clearance")
+    );
     assert!(
         count("robot-role") > 0,
         "robots met: {}",
