@@ -309,15 +309,30 @@ fn has_priority(robots: &[Robot], me: usize, other: usize) -> bool {
     a > b || (a == b && me < other)
 }
 
-/// Runs the per-element part of Algorithm 1 for robot `me` on this step's `reading`.
+/// A clearance measurement Algorithm 1 made for a door, to be applied to the POI database (rule
+/// R5) with [`apply_clearance`] in robot order after the robots perceived in parallel.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PendingClearance {
+    /// Record index of the door.
+    pub rec: usize,
+    /// The estimate, metres.
+    pub estimate_m: f64,
+    /// How many of the robot's events of this step came before the measurement.
+    pub events_before: usize,
+}
+
+/// Runs the per-element part of Algorithm 1 for robot `me` on this step's `reading`, reading
+/// the POI database only: a clearance measurement is handed back to be applied in order (the
+/// events it causes belong after the first `events_before` this call pushed).
 pub fn perceive(
     me: usize,
     reading: &Reading,
     env: &Env<'_>,
-    db: &mut PoiDb,
+    db: &PoiDb,
     mind: &mut Mind,
     sink: &mut Sink<'_>,
-) -> Perception {
+) -> (Perception, Option<PendingClearance>) {
+    let events_at_start = sink.events.len();
     let robot = &env.robots[me];
     let lim = &robot.limits;
     let beh = env.behaviour;
@@ -452,7 +467,13 @@ pub fn perceive(
         let gap = (s - lim.half_length).max(0.0);
         cap = cap.min((v_door * v_door + 2.0 * brake * gap).sqrt());
     }
-    sensor_clearance(me, reading, env, db, mind, sink, &ahead);
+    let pending = sensor_clearance(me, reading, env, db, mind, &ahead).map(|(rec, estimate_m)| {
+        PendingClearance {
+            rec,
+            estimate_m,
+            events_before: sink.events.len() - events_at_start,
+        }
+    });
 
     // C-1.
     mind.tracked.retain(|&r| {
@@ -522,28 +543,31 @@ pub fn perceive(
         );
         mind.c2 = c2;
     }
-    Perception {
-        roles,
-        speed_cap: cap.max(0.0),
-        turn_bias,
-        left_ref,
-        right_ref,
-        nearest,
-        keep_right,
-        stop,
-    }
+    (
+        Perception {
+            roles,
+            speed_cap: cap.max(0.0),
+            turn_bias,
+            left_ref,
+            right_ref,
+            nearest,
+            keep_right,
+            stop,
+        },
+        pending,
+    )
 }
 
-/// The A-2 branch: starts, feeds and reports the door clearance estimate.
+/// The A-2 branch: starts and feeds the door clearance estimate; returns the door's record and
+/// a new estimate to report.
 fn sensor_clearance(
     me: usize,
     reading: &Reading,
     env: &Env<'_>,
-    db: &mut PoiDb,
+    db: &PoiDb,
     mind: &mut Mind,
-    sink: &mut Sink<'_>,
     ahead: &[u32],
-) {
+) -> Option<(usize, f64)> {
     let robot = &env.robots[me];
     let pos = robot.state.pos;
     let dir = robot.dir();
@@ -576,14 +600,23 @@ fn sensor_clearance(
             }
         }
     }
-    let Some(e) = mind.estimator.as_mut() else {
-        return;
-    };
-    let Some(estimate) = e.update(pos, reading) else {
-        return;
-    };
-    let door = e.door;
-    let rec = db.index(Element::Door(door));
+    let e = mind.estimator.as_mut()?;
+    let estimate = e.update(pos, reading)?;
+    Some((db.index(Element::Door(e.door)), estimate))
+}
+
+/// Applies robot `me`'s clearance measurement to the POI database (rule R5) and reports it: the
+/// measurement, the observation for the write-back and the role and status changes. True when
+/// a record's roles or status changed.
+pub fn apply_clearance(
+    me: usize,
+    pending: &PendingClearance,
+    env: &Env<'_>,
+    db: &mut PoiDb,
+    sink: &mut Sink<'_>,
+) -> bool {
+    let robot = &env.robots[me];
+    let (rec, estimate) = (pending.rec, pending.estimate_m);
     let observation = Observation::Clearance {
         measured_width_m: estimate,
     };
@@ -607,6 +640,7 @@ fn sensor_clearance(
         .push((r.global_id.clone(), observation, env.t));
     sink.push(env, &robot.name, kind);
     sink.change(env, &robot.name, db, rec, &change);
+    !change.is_empty()
 }
 
 /// C-1 at the zone level: a zone's record carries C-2 while some robot in it has C-2 (R5 with
@@ -618,24 +652,27 @@ pub fn zone_coordination(
     db: &mut PoiDb,
     sink: &mut Sink<'_>,
 ) {
+    // Per zone, in one pass over the robots: the first robot in it and the closest C-2 distance.
+    let zones = env.floor.zones.len();
+    let mut closest: Vec<Option<(f64, usize)>> = vec![None; zones];
+    let mut present: Vec<Option<usize>> = vec![None; zones];
+    for (i, m) in minds.iter().enumerate() {
+        let Some(z) = m.zone.map(|z| z as usize).filter(|&z| z < zones) else {
+            continue;
+        };
+        present[z].get_or_insert(i);
+        if let (true, Some((_, d))) = (m.c2, nearest[i]) {
+            if closest[z].is_none_or(|(c, _)| d < c) {
+                closest[z] = Some((d, i));
+            }
+        }
+    }
     for (z, zone) in env.floor.zones.iter().enumerate() {
         if zone.coordination.is_none() {
             continue;
         }
         let rec = db.index(Element::Zone(z as u32));
-        let mut closest: Option<(f64, usize)> = None;
-        let mut present: Option<usize> = None;
-        for (i, m) in minds.iter().enumerate() {
-            if m.zone != Some(z as u32) {
-                continue;
-            }
-            present.get_or_insert(i);
-            if let (true, Some((_, d))) = (m.c2, nearest[i]) {
-                if closest.is_none_or(|(c, _)| d < c) {
-                    closest = Some((d, i));
-                }
-            }
-        }
+        let (closest, present) = (closest[z], present[z]);
         let has = db.roles(rec).has(Role::RobotInteraction);
         let (distance, who) = match (closest, has) {
             (Some((d, i)), _) => (d, i),

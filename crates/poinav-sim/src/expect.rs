@@ -1,16 +1,19 @@
 //! Expectations: what a scenario must show, each measured from the trace records and events (not
 //! from the simulator's internals) and judged pass or fail with the measured values.
 
+use glam::DVec2;
 use poinav_nav::Floor;
 use poinav_poi::{AccessibilityStatus, Role};
 use serde::Deserialize;
 use serde_json::{json, Value};
 
-use crate::events::EventKind;
+use crate::events::{Event, EventKind};
 use crate::geometry::{polygon_gap, Obb};
+use crate::neighbours::PointGrid;
+use crate::poi_db::PoiDb;
 use crate::sensor::RAY_DEG;
 use crate::step::RunData;
-use crate::trace::StepRecord;
+use crate::trace::{Names, StepRecord};
 use crate::world::Target;
 
 fn a3() -> Option<Role> {
@@ -207,127 +210,380 @@ fn round(v: f64) -> Value {
     }
 }
 
-fn robot_index(data: &RunData, name: &str) -> usize {
-    data.names
+fn robot_index(names: &Names, name: &str) -> usize {
+    names
         .robots
         .iter()
         .position(|r| r == name)
         .expect("robot names are checked when the scenario loads")
 }
 
-fn of_robot(data: &RunData, i: usize) -> impl Iterator<Item = &StepRecord> {
-    data.records.iter().filter(move |r| r.robot as usize == i)
-}
-
-fn footprint(data: &RunData, r: &StepRecord) -> Obb {
-    let (hl, hw) = data.sizes[r.robot as usize];
+fn footprint(sizes: &[(f64, f64)], r: &StepRecord) -> Obb {
+    let (hl, hw) = sizes[r.robot as usize];
     Obb::new(r.pos, r.heading, hl, hw)
 }
 
-/// Judges `e` on a finished run.
-pub fn judge(e: &Expect, line: usize, data: &RunData, floor: &Floor) -> Judged {
-    let (expected, measured, pass) = match e {
-        Expect::ClearanceEstimate {
-            door,
-            robot,
-            tolerance_m,
-        } => {
-            let d = door_index(floor, door).expect("checked");
-            let real = floor.doors[d].clear_width_m;
-            let last = data
-                .events
-                .iter()
-                .rev()
-                .filter(|ev| robot.as_ref().is_none_or(|r| &ev.robot == r))
-                .filter_map(|ev| match &ev.kind {
-                    EventKind::Clearance {
-                        door: id,
-                        estimate_m,
-                        ..
-                    } if *id == floor.doors[d].id => Some((ev.t, *estimate_m)),
-                    _ => None,
-                })
-                .next();
-            let pass = last.is_some_and(|(_, est)| (est - real).abs() <= *tolerance_m);
-            (
-                format!("sensor clearance estimate of `{door}` within {tolerance_m} m of its clear width"),
-                json!({
-                    "real_width_m": round(real),
-                    "estimate_m": last.map(|l| round(l.1)),
-                    "error_m": last.map(|l| round(l.1 - real)),
-                    "t": last.map(|l| round(l.0)),
-                }),
-                pass,
-            )
+/// One robot's figures for `speed-while-role`.
+#[derive(Debug, Clone)]
+struct SpeedWhile {
+    robot: usize,
+    lo: f64,
+    hi: f64,
+    samples: usize,
+    onset: Option<f64>,
+    steps: usize,
+}
+
+/// What an expectation accumulates while the run goes (nothing that grows with its length).
+#[derive(Debug, Clone)]
+enum State {
+    /// Judged from the events at the end.
+    Events,
+    RoleBelow {
+        a: usize,
+        b: usize,
+        below: usize,
+        missing: usize,
+        min_d: f64,
+        first_below: Option<f64>,
+        first_role: Option<f64>,
+    },
+    SpeedWhile(Vec<SpeedWhile>),
+    NoContact {
+        idx: Vec<usize>,
+        names: Vec<String>,
+        min_gap: f64,
+        points: Vec<DVec2>,
+        grid: PointGrid,
+    },
+    Lateral {
+        robot: usize,
+        ray: usize,
+        odo: f64,
+        prev: Option<DVec2>,
+        n: usize,
+        lo: f64,
+        hi: f64,
+        sum: f64,
+        sq: f64,
+        skipped: usize,
+    },
+    SpeedRange {
+        robot: usize,
+        max: f64,
+    },
+}
+
+/// An expectation measured step by step as the run goes ([`Judge::observe`]) and judged at
+/// the end ([`Judge::finish`]): the run's records need not be kept.
+#[derive(Debug, Clone)]
+pub struct Judge {
+    expect: Expect,
+    line: usize,
+    state: State,
+}
+
+impl Judge {
+    /// Starts measuring `e` (declared at `line`) for robots named by `names`.
+    pub fn new(e: &Expect, line: usize, names: &Names) -> Judge {
+        let state = match e {
+            Expect::ClearanceEstimate { .. }
+            | Expect::DoorStatus { .. }
+            | Expect::ReachesZone { .. } => State::Events,
+            Expect::RoleBelowDistance { robots, .. } => State::RoleBelow {
+                a: robot_index(names, &robots[0]),
+                b: robot_index(names, &robots[1]),
+                below: 0,
+                missing: 0,
+                min_d: f64::INFINITY,
+                first_below: None,
+                first_role: None,
+            },
+            Expect::SpeedWhileRole { robots, .. } => State::SpeedWhile(
+                robots
+                    .iter()
+                    .map(|name| SpeedWhile {
+                        robot: robot_index(names, name),
+                        lo: f64::INFINITY,
+                        hi: f64::NEG_INFINITY,
+                        samples: 0,
+                        onset: None,
+                        steps: 0,
+                    })
+                    .collect(),
+            ),
+            Expect::NoContact { robots, .. } => {
+                let idx: Vec<usize> = if robots.is_empty() {
+                    (0..names.robots.len()).collect()
+                } else {
+                    robots.iter().map(|r| robot_index(names, r)).collect()
+                };
+                State::NoContact {
+                    names: idx.iter().map(|&i| names.robots[i].clone()).collect(),
+                    idx,
+                    min_gap: f64::INFINITY,
+                    points: Vec::new(),
+                    grid: PointGrid::default(),
+                }
+            }
+            Expect::LateralDistance { robot, ray_deg, .. } => State::Lateral {
+                robot: robot_index(names, robot),
+                ray: RAY_DEG.iter().position(|d| d == ray_deg).expect("checked"),
+                odo: 0.0,
+                prev: None,
+                n: 0,
+                lo: f64::INFINITY,
+                hi: f64::NEG_INFINITY,
+                sum: 0.0,
+                sq: 0.0,
+                skipped: 0,
+            },
+            Expect::SpeedRange { robot, .. } => State::SpeedRange {
+                robot: robot_index(names, robot),
+                max: 0.0,
+            },
+        };
+        Judge {
+            expect: e.clone(),
+            line,
+            state,
         }
-        Expect::DoorStatus {
-            door,
-            status,
-            roles_include,
-            roles_exclude,
-        } => {
-            let d = door_index(floor, door).expect("checked");
-            let last = data
-                .events
-                .iter()
-                .rev()
-                .filter_map(|ev| match &ev.kind {
-                    EventKind::Clearance {
-                        door: id,
-                        status,
-                        roles,
-                        ..
-                    } if *id == floor.doors[d].id => Some((*status, roles.clone())),
-                    _ => None,
-                })
-                .next();
-            let pass = last.as_ref().is_some_and(|(s, roles)| {
-                s == status
-                    && roles_include.iter().all(|r| roles.contains(r))
-                    && !roles_exclude.iter().any(|r| roles.contains(r))
-            });
+    }
+
+    /// Adds one step: `step[i]` is robot `i`'s record. `sizes` are the robots' half length and
+    /// half width; `db` the POI database (obstacle records, the only ones read here, never
+    /// change during a run).
+    pub fn observe(&mut self, step: &[StepRecord], dt: f64, sizes: &[(f64, f64)], db: &PoiDb) {
+        match (&mut self.state, &self.expect) {
+            (State::Events, _) => {}
             (
-                format!(
-                    "`{door}` {} after the sensor check, with {:?}, without {:?}",
-                    status.label(),
-                    roles_include.iter().map(|r| r.label()).collect::<Vec<_>>(),
-                    roles_exclude.iter().map(|r| r.label()).collect::<Vec<_>>()
-                ),
-                json!({
-                    "status": last.as_ref().map(|l| l.0.label()),
-                    "method": last.as_ref().map(|_| "SENSOR_BASED"),
-                    "roles": last.as_ref().map(|l| l.1.iter().map(|r| r.label()).collect::<Vec<_>>()),
-                }),
-                pass,
-            )
-        }
-        Expect::RoleBelowDistance {
-            robots,
-            role,
-            distance_m,
-        } => {
-            let (a, b) = (robot_index(data, &robots[0]), robot_index(data, &robots[1]));
-            let n = data.names.robots.len();
-            let (mut below, mut missing, mut min_d) = (0usize, 0usize, f64::INFINITY);
-            let (mut first_below, mut first_role): (Option<f64>, Option<f64>) = (None, None);
-            for step in data.records.chunks(n) {
-                let (ra, rb) = (&step[a], &step[b]);
-                let t = ra.step as f64 * data.dt;
+                State::RoleBelow {
+                    a,
+                    b,
+                    below,
+                    missing,
+                    min_d,
+                    first_below,
+                    first_role,
+                },
+                Expect::RoleBelowDistance {
+                    role, distance_m, ..
+                },
+            ) => {
+                let (ra, rb) = (&step[*a], &step[*b]);
+                let t = ra.step as f64 * dt;
                 let d = ra.pos.distance(rb.pos);
-                min_d = min_d.min(d);
+                *min_d = min_d.min(d);
                 let both = ra.roles.has(*role) && rb.roles.has(*role);
                 if both && first_role.is_none() {
-                    first_role = Some(t);
+                    *first_role = Some(t);
                 }
                 if d < *distance_m {
-                    below += 1;
+                    *below += 1;
                     first_below.get_or_insert(t);
                     if !both {
-                        missing += 1;
+                        *missing += 1;
                     }
                 }
             }
+            (State::SpeedWhile(per), Expect::SpeedWhileRole { role, settle_s, .. }) => {
+                for s in per {
+                    let r = &step[s.robot];
+                    let t = r.step as f64 * dt;
+                    if !r.roles.has(*role) {
+                        s.onset = None;
+                        continue;
+                    }
+                    s.steps += 1;
+                    let since = *s.onset.get_or_insert(t);
+                    if t - since + 1e-9 < *settle_s {
+                        continue;
+                    }
+                    s.samples += 1;
+                    s.lo = s.lo.min(r.speed);
+                    s.hi = s.hi.max(r.speed);
+                }
+            }
             (
+                State::NoContact {
+                    idx,
+                    min_gap,
+                    points,
+                    grid,
+                    ..
+                },
+                _,
+            ) => {
+                if idx.len() < 2 {
+                    return;
+                }
+                // Only pairs whose centres are closer than both radii plus the gap so far (at
+                // most 10 m) can lower it: the grid visits just those. The minimum does not
+                // depend on the order pairs are visited in.
+                let boxes: Vec<Obb> = idx.iter().map(|&i| footprint(sizes, &step[i])).collect();
+                let r_max = boxes.iter().map(Obb::radius).fold(0.0, f64::max);
+                points.clear();
+                points.extend(boxes.iter().map(|b| b.c));
+                grid.rebuild(points, 2.0 * r_max + min_gap.min(10.0));
+                grid.pairs(points, |x, y| {
+                    let (pa, pb) = (&boxes[x], &boxes[y]);
+                    if pa.c.distance(pb.c) > pa.radius() + pb.radius() + min_gap.min(10.0) {
+                        return;
+                    }
+                    *min_gap = min_gap.min(polygon_gap(&pa.corners(), &pb.corners()));
+                });
+            }
+            (
+                State::Lateral {
+                    robot,
+                    ray,
+                    odo,
+                    prev,
+                    n,
+                    lo,
+                    hi,
+                    sum,
+                    sq,
+                    skipped,
+                },
+                Expect::LateralDistance {
+                    distance_m,
+                    after_m,
+                    role,
+                    mode,
+                    ..
+                },
+            ) => {
+                let r = &step[*robot];
+                if let Some(p) = *prev {
+                    *odo += r.pos.distance(p);
+                }
+                *prev = Some(r.pos);
+                if *odo < *after_m || mode.as_deref().is_some_and(|m| m != r.mode.label()) {
+                    return;
+                }
+                let hit = &r.rays[*ray];
+                let on_reference = match hit.target {
+                    Target::Obstacle(o) => {
+                        hit.passages.is_empty()
+                            && role.is_none_or(|role| {
+                                db.roles(db.index(crate::poi_db::Element::Obstacle(o)))
+                                    .has(role)
+                            })
+                    }
+                    _ => false,
+                };
+                if !on_reference {
+                    *skipped += 1;
+                    return;
+                }
+                *n += 1;
+                *lo = lo.min(hit.dist);
+                *hi = hi.max(hit.dist);
+                *sum += hit.dist;
+                *sq += (hit.dist - distance_m) * (hit.dist - distance_m);
+            }
+            (State::SpeedRange { robot, max }, _) => {
+                *max = max.max(step[*robot].speed);
+            }
+            _ => unreachable!("the state matches its expectation"),
+        }
+    }
+
+    /// Judges the expectation on what was observed and the run's `events`.
+    pub fn finish(self, events: &[Event], floor: &Floor) -> Judged {
+        let (expected, measured, pass) = match (&self.expect, self.state) {
+            (
+                Expect::ClearanceEstimate {
+                    door,
+                    robot,
+                    tolerance_m,
+                },
+                _,
+            ) => {
+                let d = door_index(floor, door).expect("checked");
+                let real = floor.doors[d].clear_width_m;
+                let last = events
+                    .iter()
+                    .rev()
+                    .filter(|ev| robot.as_ref().is_none_or(|r| &ev.robot == r))
+                    .filter_map(|ev| match &ev.kind {
+                        EventKind::Clearance {
+                            door: id,
+                            estimate_m,
+                            ..
+                        } if *id == floor.doors[d].id => Some((ev.t, *estimate_m)),
+                        _ => None,
+                    })
+                    .next();
+                let pass = last.is_some_and(|(_, est)| (est - real).abs() <= *tolerance_m);
+                (
+                    format!("sensor clearance estimate of `{door}` within {tolerance_m} m of its clear width"),
+                    json!({
+                        "real_width_m": round(real),
+                        "estimate_m": last.map(|l| round(l.1)),
+                        "error_m": last.map(|l| round(l.1 - real)),
+                        "t": last.map(|l| round(l.0)),
+                    }),
+                    pass,
+                )
+            }
+            (
+                Expect::DoorStatus {
+                    door,
+                    status,
+                    roles_include,
+                    roles_exclude,
+                },
+                _,
+            ) => {
+                let d = door_index(floor, door).expect("checked");
+                let last = events
+                    .iter()
+                    .rev()
+                    .filter_map(|ev| match &ev.kind {
+                        EventKind::Clearance {
+                            door: id,
+                            status,
+                            roles,
+                            ..
+                        } if *id == floor.doors[d].id => Some((*status, roles.clone())),
+                        _ => None,
+                    })
+                    .next();
+                let pass = last.as_ref().is_some_and(|(s, roles)| {
+                    s == status
+                        && roles_include.iter().all(|r| roles.contains(r))
+                        && !roles_exclude.iter().any(|r| roles.contains(r))
+                });
+                (
+                    format!(
+                        "`{door}` {} after the sensor check, with {:?}, without {:?}",
+                        status.label(),
+                        roles_include.iter().map(|r| r.label()).collect::<Vec<_>>(),
+                        roles_exclude.iter().map(|r| r.label()).collect::<Vec<_>>()
+                    ),
+                    json!({
+                        "status": last.as_ref().map(|l| l.0.label()),
+                        "method": last.as_ref().map(|_| "SENSOR_BASED"),
+                        "roles": last.as_ref().map(|l| l.1.iter().map(|r| r.label()).collect::<Vec<_>>()),
+                    }),
+                    pass,
+                )
+            }
+            (
+                Expect::RoleBelowDistance {
+                    role, distance_m, ..
+                },
+                State::RoleBelow {
+                    below,
+                    missing,
+                    min_d,
+                    first_below,
+                    first_role,
+                    ..
+                },
+            ) => (
                 format!(
                     "both robots have {} whenever their distance is below {distance_m} m",
                     role.label()
@@ -340,194 +596,138 @@ pub fn judge(e: &Expect, line: usize, data: &RunData, floor: &Floor) -> Judged {
                     "min_distance_m": round(min_d),
                 }),
                 below > 0 && missing == 0,
-            )
-        }
-        Expect::SpeedWhileRole {
-            robots,
-            role,
-            speed_m_s,
-            tolerance_m_s,
-            settle_s,
-        } => {
-            let mut per = Vec::new();
-            let mut pass = true;
-            for name in robots {
-                let i = robot_index(data, name);
-                let (mut lo, mut hi, mut samples, mut onset, mut steps) = (
-                    f64::INFINITY,
-                    f64::NEG_INFINITY,
-                    0usize,
-                    None::<f64>,
-                    0usize,
-                );
-                for r in of_robot(data, i) {
-                    let t = r.step as f64 * data.dt;
-                    if !r.roles.has(*role) {
-                        onset = None;
-                        continue;
-                    }
-                    steps += 1;
-                    let since = *onset.get_or_insert(t);
-                    if t - since + 1e-9 < *settle_s {
-                        continue;
-                    }
-                    samples += 1;
-                    lo = lo.min(r.speed);
-                    hi = hi.max(r.speed);
+            ),
+            (
+                Expect::SpeedWhileRole {
+                    robots,
+                    role,
+                    speed_m_s,
+                    tolerance_m_s,
+                    settle_s,
+                },
+                State::SpeedWhile(per),
+            ) => {
+                let mut out = Vec::new();
+                let mut pass = true;
+                for (name, s) in robots.iter().zip(per) {
+                    let ok = s.samples > 0
+                        && s.lo >= speed_m_s - tolerance_m_s
+                        && s.hi <= speed_m_s + tolerance_m_s;
+                    pass &= ok;
+                    out.push(json!({
+                        "robot": name,
+                        "steps_with_role": s.steps,
+                        "samples": s.samples,
+                        "min_speed": round(s.lo),
+                        "max_speed": round(s.hi),
+                        "pass": ok,
+                    }));
                 }
-                let ok = samples > 0
-                    && lo >= speed_m_s - tolerance_m_s
-                    && hi <= speed_m_s + tolerance_m_s;
-                pass &= ok;
-                per.push(json!({
-                    "robot": name,
-                    "steps_with_role": steps,
-                    "samples": samples,
-                    "min_speed": round(lo),
-                    "max_speed": round(hi),
-                    "pass": ok,
-                }));
+                (
+                    format!(
+                        "speed {speed_m_s} +/- {tolerance_m_s} m/s while {} lasts (after {settle_s} s)",
+                        role.label()
+                    ),
+                    Value::Array(out),
+                    pass,
+                )
             }
             (
-                format!(
-                    "speed {speed_m_s} +/- {tolerance_m_s} m/s while {} lasts (after {settle_s} s)",
-                    role.label()
-                ),
-                Value::Array(per),
-                pass,
-            )
-        }
-        Expect::NoContact { robots, walls } => {
-            let idx: Vec<usize> = if robots.is_empty() {
-                (0..data.names.robots.len()).collect()
-            } else {
-                robots.iter().map(|r| robot_index(data, r)).collect()
-            };
-            let n = data.names.robots.len();
-            let mut min_gap = f64::INFINITY;
-            for step in data.records.chunks(n) {
-                for (x, &a) in idx.iter().enumerate() {
-                    for &b in &idx[x + 1..] {
-                        let (pa, pb) = (footprint(data, &step[a]), footprint(data, &step[b]));
-                        if pa.c.distance(pb.c) > pa.radius() + pb.radius() + min_gap.min(10.0) {
-                            continue;
-                        }
-                        min_gap = min_gap.min(polygon_gap(&pa.corners(), &pb.corners()));
-                    }
-                }
+                Expect::NoContact { walls, .. },
+                State::NoContact {
+                    idx,
+                    names,
+                    min_gap,
+                    ..
+                },
+            ) => {
+                let contacts = events
+                    .iter()
+                    .filter(|ev| names.contains(&ev.robot))
+                    .filter(|ev| match &ev.kind {
+                        EventKind::Contact { class, .. } => *walls || class == "Robot",
+                        _ => false,
+                    })
+                    .count();
+                (
+                    format!(
+                        "no contact between robots{}",
+                        if *walls { " or with the building" } else { "" }
+                    ),
+                    json!({ "min_gap_m": round(min_gap), "contacts": contacts }),
+                    contacts == 0 && (min_gap > 0.0 || idx.len() < 2),
+                )
             }
-            let names: Vec<&str> = idx.iter().map(|&i| data.names.robots[i].as_str()).collect();
-            let contacts = data
-                .events
-                .iter()
-                .filter(|ev| names.contains(&ev.robot.as_str()))
-                .filter(|ev| match &ev.kind {
-                    EventKind::Contact { class, .. } => *walls || class == "Robot",
-                    _ => false,
-                })
-                .count();
             (
-                format!(
-                    "no contact between robots{}",
-                    if *walls { " or with the building" } else { "" }
-                ),
-                json!({ "min_gap_m": round(min_gap), "contacts": contacts }),
-                contacts == 0 && (min_gap > 0.0 || idx.len() < 2),
-            )
-        }
-        Expect::LateralDistance {
-            robot,
-            ray_deg,
-            distance_m,
-            tolerance_m,
-            after_m,
-            role,
-            mode,
-        } => {
-            let i = robot_index(data, robot);
-            let k = RAY_DEG.iter().position(|d| d == ray_deg).expect("checked");
-            let (mut odo, mut prev) = (0.0, None);
-            let (mut n, mut lo, mut hi, mut sum, mut sq, mut skipped) =
-                (0usize, f64::INFINITY, f64::NEG_INFINITY, 0.0, 0.0, 0usize);
-            for r in of_robot(data, i) {
-                if let Some(p) = prev {
-                    odo += r.pos.distance(p);
-                }
-                prev = Some(r.pos);
-                if odo < *after_m || mode.as_deref().is_some_and(|m| m != r.mode.label()) {
-                    continue;
-                }
-                let ray = &r.rays[k];
-                let on_reference = match ray.target {
-                    Target::Obstacle(o) => {
-                        ray.passages.is_empty()
-                            && role.is_none_or(|role| {
-                                data.db
-                                    .roles(data.db.index(crate::poi_db::Element::Obstacle(o)))
-                                    .has(role)
-                            })
-                    }
-                    _ => false,
-                };
-                if !on_reference {
-                    skipped += 1;
-                    continue;
-                }
-                n += 1;
-                lo = lo.min(ray.dist);
-                hi = hi.max(ray.dist);
-                sum += ray.dist;
-                sq += (ray.dist - distance_m) * (ray.dist - distance_m);
+                Expect::LateralDistance {
+                    ray_deg,
+                    distance_m,
+                    tolerance_m,
+                    after_m,
+                    ..
+                },
+                State::Lateral {
+                    n,
+                    lo,
+                    hi,
+                    sum,
+                    sq,
+                    skipped,
+                    ..
+                },
+            ) => {
+                let pass =
+                    n > 0 && lo >= distance_m - tolerance_m && hi <= distance_m + tolerance_m;
+                (
+                    format!(
+                        "{ray_deg} degree ray at {distance_m} +/- {tolerance_m} m after {after_m} m"
+                    ),
+                    json!({
+                        "samples": n,
+                        "skipped_no_reference": skipped,
+                        "min_m": round(lo),
+                        "max_m": round(hi),
+                        "mean_m": if n > 0 { round(sum / n as f64) } else { Value::Null },
+                        "rms_error_m": if n > 0 { round((sq / n as f64).sqrt()) } else { Value::Null },
+                    }),
+                    pass,
+                )
             }
-            let pass = n > 0 && lo >= distance_m - tolerance_m && hi <= distance_m + tolerance_m;
             (
-                format!(
-                    "{ray_deg} degree ray at {distance_m} +/- {tolerance_m} m after {after_m} m"
-                ),
-                json!({
-                    "samples": n,
-                    "skipped_no_reference": skipped,
-                    "min_m": round(lo),
-                    "max_m": round(hi),
-                    "mean_m": if n > 0 { round(sum / n as f64) } else { Value::Null },
-                    "rms_error_m": if n > 0 { round((sq / n as f64).sqrt()) } else { Value::Null },
-                }),
-                pass,
-            )
-        }
-        Expect::ReachesZone {
-            robot,
-            zone,
-            within_s,
-        } => {
-            let zr = floor.zone(zone).expect("checked");
-            let t = data
-                .events
-                .iter()
-                .find(|ev| {
-                    &ev.robot == robot
-                        && matches!(&ev.kind, EventKind::Arrived { zone: z, .. } if *z == zr.id)
-                })
-                .map(|ev| ev.t);
+                Expect::ReachesZone {
+                    robot,
+                    zone,
+                    within_s,
+                },
+                _,
+            ) => {
+                let zr = floor.zone(zone).expect("checked");
+                let t = events
+                    .iter()
+                    .find(|ev| {
+                        &ev.robot == robot
+                            && matches!(&ev.kind, EventKind::Arrived { zone: z, .. } if *z == zr.id)
+                    })
+                    .map(|ev| ev.t);
+                (
+                    format!(
+                        "`{robot}` reaches `{zone}`{}",
+                        within_s
+                            .map(|s| format!(" within {s} s"))
+                            .unwrap_or_default()
+                    ),
+                    json!({ "arrived_t": t.map(round) }),
+                    t.is_some_and(|t| within_s.is_none_or(|w| t <= w)),
+                )
+            }
             (
-                format!(
-                    "`{robot}` reaches `{zone}`{}",
-                    within_s
-                        .map(|s| format!(" within {s} s"))
-                        .unwrap_or_default()
-                ),
-                json!({ "arrived_t": t.map(round) }),
-                t.is_some_and(|t| within_s.is_none_or(|w| t <= w)),
-            )
-        }
-        Expect::SpeedRange {
-            robot,
-            reaches_m_s,
-            at_most_m_s,
-        } => {
-            let i = robot_index(data, robot);
-            let max = of_robot(data, i).map(|r| r.speed).fold(0.0, f64::max);
-            (
+                Expect::SpeedRange {
+                    robot,
+                    reaches_m_s,
+                    at_most_m_s,
+                },
+                State::SpeedRange { max, .. },
+            ) => (
                 {
                     let mut parts = Vec::new();
                     if let Some(v) = reaches_m_s {
@@ -541,14 +741,25 @@ pub fn judge(e: &Expect, line: usize, data: &RunData, floor: &Floor) -> Judged {
                 json!({ "max_speed": round(max) }),
                 reaches_m_s.is_none_or(|v| max >= v - 1e-6)
                     && at_most_m_s.is_none_or(|v| max <= v + 1e-9),
-            )
+            ),
+            _ => unreachable!("the state matches its expectation"),
+        };
+        Judged {
+            kind: self.expect.kind(),
+            line: self.line,
+            expected,
+            measured,
+            pass,
         }
-    };
-    Judged {
-        kind: e.kind(),
-        line,
-        expected,
-        measured,
-        pass,
     }
+}
+
+/// Judges `e` on a finished run that kept its records ([`crate::SimOptions::record`]).
+pub fn judge(e: &Expect, line: usize, data: &RunData, floor: &Floor) -> Judged {
+    let mut j = Judge::new(e, line, &data.names);
+    let n = data.names.robots.len().max(1);
+    for step in data.records.chunks(n) {
+        j.observe(step, data.dt, &data.sizes, &data.db);
+    }
+    j.finish(&data.events, floor)
 }

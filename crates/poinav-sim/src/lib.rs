@@ -14,6 +14,7 @@
 //! ```
 
 pub mod algorithm1;
+pub mod atomic_file;
 pub mod building;
 pub mod controller;
 pub mod demo_floor;
@@ -22,12 +23,15 @@ pub mod events;
 pub mod expect;
 pub mod geometry;
 pub mod ifc_floor;
+pub mod neighbours;
 pub mod output;
 pub mod plot;
 pub mod poi_db;
+pub mod recorder;
 pub mod robot;
 pub mod route;
 mod run;
+pub mod samples;
 pub mod scenario;
 pub mod sensor;
 pub mod step;
@@ -38,8 +42,9 @@ pub mod world;
 pub use building::{prepare, FloorFromModel, Prepared};
 pub use error::SimError;
 pub use events::{Event, EventKind};
-pub use output::{apply_findings, write_back, write_outputs};
-pub use run::{run, Outcome};
+pub use output::{apply_findings, run_into, write_back, write_outputs};
+pub use recorder::{Recorder, RobotFigures, TraceOut};
+pub use run::{run, run_with, Outcome};
 pub use scenario::Scenario;
 pub use step::{RobotSetup, Sim, SimOptions, DT};
 

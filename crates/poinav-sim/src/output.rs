@@ -1,5 +1,5 @@
-//! Writing a run's outputs: `DIR/trace.jsonl`, `DIR/summary.json` and the SVG plots, each
-//! atomically; and the write-back of what the sensors found into a copy of the IFC through
+//! Writing a run's outputs: `DIR/trace.jsonl` (streamed while the run goes, or from memory),
+//! `DIR/summary.json` and the SVG plots, each atomically; and the write-back of what the sensors found into a copy of the IFC through
 //! `poinav_poi::runtime::apply` and `poinav_poi::write_enrichment`.
 
 use std::path::{Path, PathBuf};
@@ -9,9 +9,12 @@ use poinav_nav::Floor;
 use poinav_poi::runtime::{self, Observation};
 use poinav_poi::{Classification, WriteOptions};
 
+use crate::atomic_file::AtomicFile;
 use crate::error::SimError;
 use crate::plot;
-use crate::run::Outcome;
+use crate::recorder::TraceOut;
+use crate::run::{run_with, Outcome};
+use crate::scenario::Scenario;
 
 fn io(path: &Path, e: std::io::Error) -> SimError {
     SimError::Io {
@@ -20,18 +23,36 @@ fn io(path: &Path, e: std::io::Error) -> SimError {
     }
 }
 
-/// Writes trace.jsonl, summary.json, trajectories.svg, speed.svg and distance.svg into `dir`
-/// (created if missing); returns the paths written.
+/// Writes trace.jsonl (when the outcome kept its trace in memory, see [`crate::run()`]),
+/// summary.json, trajectories.svg, speed.svg and distance.svg into `dir` (created if missing);
+/// returns the paths written.
 pub fn write_outputs(
     dir: &Path,
     outcome: &Outcome,
     floor: &Floor,
 ) -> Result<Vec<PathBuf>, SimError> {
     std::fs::create_dir_all(dir).map_err(|e| io(dir, e))?;
+    let mut written = Vec::new();
+    if let Some(trace) = &outcome.trace {
+        let path = dir.join(TRACE);
+        poinav_ifc::output::write_atomic(&path, trace).map_err(|e| io(&path, e))?;
+        written.push(path);
+    }
+    written.extend(write_summary_and_plots(dir, outcome, floor)?);
+    Ok(written)
+}
+
+/// The trace's file name in an output folder.
+pub const TRACE: &str = "trace.jsonl";
+
+fn write_summary_and_plots(
+    dir: &Path,
+    outcome: &Outcome,
+    floor: &Floor,
+) -> Result<Vec<PathBuf>, SimError> {
     let mut summary = serde_json::to_string_pretty(&outcome.summary()).expect("summary is JSON");
     summary.push('\n');
     let files = [
-        ("trace.jsonl", outcome.trace_jsonl()),
         ("summary.json", summary),
         ("trajectories.svg", plot::trajectories(outcome, floor)),
         ("speed.svg", plot::speed(outcome)),
@@ -44,6 +65,48 @@ pub fn write_outputs(
         written.push(path);
     }
     Ok(written)
+}
+
+/// Runs `scenario` (its variant `variant`) on `floor` and writes its outputs into `dir`
+/// (created if missing): the trace streamed to `DIR/trace.jsonl` as the steps are taken
+/// (every `trace_every`-th step; `None`: no trace, and a trace.jsonl left by an earlier run is
+/// removed so it cannot be mistaken for this one's), published atomically at the end, then
+/// summary.json and the plots. Memory does not grow with the run's length (but for its events).
+pub fn run_into(
+    dir: &Path,
+    scenario: &Scenario,
+    variant: Option<&str>,
+    floor: &Floor,
+    trace_every: Option<u64>,
+) -> Result<(Outcome, Vec<PathBuf>), SimError> {
+    std::fs::create_dir_all(dir).map_err(|e| io(dir, e))?;
+    let path = dir.join(TRACE);
+    let mut written = Vec::new();
+    let outcome = match trace_every {
+        Some(every) => {
+            let mut file = AtomicFile::create(&path).map_err(|e| io(&path, e))?;
+            let out = TraceOut {
+                writer: &mut file,
+                every,
+                name: path.display().to_string(),
+            };
+            let outcome = run_with(scenario, variant, floor, Some(out))?;
+            file.commit().map_err(|e| io(&path, e))?;
+            written.push(path);
+            outcome
+        }
+        None => {
+            let outcome = run_with(scenario, variant, floor, None)?;
+            match std::fs::remove_file(&path) {
+                Ok(()) => {}
+                Err(e) if e.kind() == std::io::ErrorKind::NotFound => {}
+                Err(e) => return Err(io(&path, e)),
+            }
+            outcome
+        }
+    };
+    written.extend(write_summary_and_plots(dir, &outcome, floor)?);
+    Ok((outcome, written))
 }
 
 /// The enrichment `classification` of `model` with the run's findings applied (rule R5, in the

@@ -1,6 +1,8 @@
 //! SVG plots of a run: trajectories on the floor plan (zones, walls, doors coloured by their
 //! status after the run, each robot's path and final footprint), speed over time, and the
-//! distance between robots over time with the zones' separation thresholds.
+//! distance between robots over time with the zones' separation thresholds. They draw what
+//! [`crate::samples::PlotSamples`] kept during the run (every step up to 3000 points per line,
+//! fewer for many robots), not the trace.
 
 use std::fmt::Write;
 
@@ -99,14 +101,14 @@ pub fn trajectories(outcome: &Outcome, floor: &Floor) -> String {
             status.label()
         );
     }
-    let n = data.names.robots.len().max(1);
+    let samples = &outcome.samples;
     for (i, name) in data.names.robots.iter().enumerate() {
-        let mine: Vec<_> = data.records.iter().skip(i).step_by(n).collect();
-        let every = (mine.len() / 3000).max(1);
+        let mine: Vec<_> = samples.of(i).collect();
+        let last = samples.last(i);
         let pts: Vec<String> = mine
             .iter()
-            .step_by(every)
-            .chain(mine.last())
+            .copied()
+            .chain(last)
             .map(|r| {
                 let (x, y) = px(r.pos);
                 format!("{},{}", f(x), f(y))
@@ -119,7 +121,7 @@ pub fn trajectories(outcome: &Outcome, floor: &Floor) -> String {
             pts.join(" "),
             esc(name)
         );
-        if let (Some(first), Some(last)) = (mine.first(), mine.last()) {
+        if let (Some(first), Some(last)) = (mine.first(), last) {
             let (x, y) = px(first.pos);
             let _ = writeln!(
                 s,
@@ -152,7 +154,7 @@ pub fn trajectories(outcome: &Outcome, floor: &Floor) -> String {
     s
 }
 
-/// A line chart.
+/// A line chart (its points come thinned by [`crate::samples::PlotSamples`]).
 struct Series {
     name: String,
     colour: &'static str,
@@ -276,11 +278,9 @@ fn chart(
         );
     }
     for (k, se) in series.iter().enumerate() {
-        let every = (se.points.len() / 3000).max(1);
         let pts: Vec<String> = se
             .points
             .iter()
-            .step_by(every)
             .filter(|p| p.1.is_finite())
             .map(|&(x, y)| {
                 let (a, b) = px(x, y);
@@ -314,7 +314,6 @@ fn chart(
 /// Speed over time, one line per robot.
 pub fn speed(outcome: &Outcome) -> String {
     let data = &outcome.data;
-    let n = data.names.robots.len().max(1);
     let series: Vec<Series> = data
         .names
         .robots
@@ -323,11 +322,9 @@ pub fn speed(outcome: &Outcome) -> String {
         .map(|(i, name)| Series {
             name: name.clone(),
             colour: colour(i),
-            points: data
-                .records
-                .iter()
-                .skip(i)
-                .step_by(n)
+            points: outcome
+                .samples
+                .of(i)
                 .map(|r| (r.step as f64 * data.dt, r.speed))
                 .collect(),
         })
@@ -348,7 +345,7 @@ pub fn distance(outcome: &Outcome, floor: &Floor) -> String {
     let n = data.names.robots.len();
     let mut series = Vec::new();
     if n >= 2 {
-        let steps: Vec<_> = data.records.chunks(n).collect();
+        let steps: Vec<_> = outcome.samples.steps().collect();
         if n <= 8 {
             for a in 0..n {
                 for b in a + 1..n {

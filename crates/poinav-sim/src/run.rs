@@ -1,17 +1,17 @@
-//! Running a scenario on a floor: set the robots up, step for the duration, judge the
-//! expectations, and hand back the trace, events, observations and summary.
-
-use std::collections::BTreeMap;
+//! Running a scenario on a floor: set the robots up, step for the duration with a
+//! [`Recorder`] streaming the trace and measuring as it goes (memory flat in the run's length),
+//! judge the expectations at the end; the summary of a finished run.
 
 use poinav_nav::Floor;
 use serde_json::{json, Value};
 
 use crate::error::SimError;
 use crate::events::Event;
-use crate::expect::{judge, Judged};
+use crate::expect::{Judge, Judged};
+use crate::recorder::{Recorder, RobotFigures, TraceOut};
+use crate::samples::PlotSamples;
 use crate::scenario::{ExpectEntry, Scenario};
 use crate::step::{RunData, Sim, SimOptions};
-use crate::trace;
 
 /// A finished run.
 #[derive(Debug, Clone)]
@@ -22,10 +22,18 @@ pub struct Outcome {
     pub variant: Option<String>,
     /// Floor name.
     pub floor: String,
-    /// Everything recorded.
+    /// Events, observations, names, the POI database; `records` is empty (they were streamed).
     pub data: RunData,
     /// The judged expectations, scenario's first then the variant's.
     pub judged: Vec<Judged>,
+    /// Records per robot (steps + 1).
+    pub records: u64,
+    /// Per robot figures for the summary.
+    pub figures: Vec<RobotFigures>,
+    /// What the plots draw.
+    pub samples: PlotSamples,
+    /// The whole trace, when [`run`] kept it in memory.
+    pub trace: Option<Vec<u8>>,
 }
 
 impl Outcome {
@@ -39,38 +47,9 @@ impl Outcome {
         &self.data.events
     }
 
-    /// The trace as JSON Lines: one line per step and robot, steps in order, robots in
-    /// scenario order, events on the line of the robot and step they belong to.
-    pub fn trace_jsonl(&self) -> String {
-        let robot_of: BTreeMap<&str, usize> = self
-            .data
-            .names
-            .robots
-            .iter()
-            .enumerate()
-            .map(|(i, n)| (n.as_str(), i))
-            .collect();
-        let mut by_line: BTreeMap<(u64, usize), Vec<&Event>> = BTreeMap::new();
-        for e in &self.data.events {
-            let r = robot_of.get(e.robot.as_str()).copied().unwrap_or(0);
-            by_line.entry((e.step, r)).or_default().push(e);
-        }
-        let mut out = String::with_capacity(self.data.records.len() * 900);
-        for r in &self.data.records {
-            let events = by_line
-                .get(&(r.step, r.robot as usize))
-                .map(Vec::as_slice)
-                .unwrap_or(&[]);
-            out.push_str(&trace::line(r, self.data.dt, &self.data.names, events));
-            out.push('\n');
-        }
-        out
-    }
-
     /// The summary: scenario, variant, steps, per robot figures, every expectation with its
     /// measured value and verdict, the events, and `pass`.
     pub fn summary(&self) -> Value {
-        let n = self.data.names.robots.len().max(1);
         let robots: Vec<Value> = self
             .data
             .names
@@ -78,17 +57,14 @@ impl Outcome {
             .iter()
             .enumerate()
             .map(|(i, name)| {
-                let mine: Vec<_> = self.data.records.iter().filter(|r| r.robot as usize == i).collect();
-                let travelled: f64 = mine.windows(2).map(|w| w[0].pos.distance(w[1].pos)).sum();
-                let max_speed = mine.iter().map(|r| r.speed).fold(0.0, f64::max);
-                let last = mine.last();
+                let f = &self.figures[i];
                 json!({
                     "name": name,
                     "global_id": self.data.names.robot_ids[i],
-                    "travelled_m": round(travelled),
-                    "max_speed_m_s": round(max_speed),
-                    "end": last.map(|r| json!({"x": round(r.pos.x), "y": round(r.pos.y), "heading_deg": round(r.heading.to_degrees())})),
-                    "end_zone": last.and_then(|r| r.zone).map(|z| self.data.names.zones[z as usize].clone()),
+                    "travelled_m": round(f.travelled),
+                    "max_speed_m_s": round(f.max_speed),
+                    "end": f.end.map(|(p, h)| json!({"x": round(p.x), "y": round(p.y), "heading_deg": round(h.to_degrees())})),
+                    "end_zone": f.end_zone.map(|z| self.data.names.zones[z as usize].clone()),
                 })
             })
             .collect();
@@ -118,7 +94,7 @@ impl Outcome {
             "dt_s": self.data.dt,
             "steps": self.data.steps,
             "duration_s": round(self.data.steps as f64 * self.data.dt),
-            "records": self.data.records.len() / n,
+            "records": self.records,
             "robots": robots,
             "expectations": expectations,
             "events": events,
@@ -135,8 +111,29 @@ fn round(v: f64) -> Value {
     }
 }
 
-/// Runs `scenario` (its variant `variant`, when it has variants) on `floor`.
+/// Runs `scenario` (its variant `variant`, when it has variants) on `floor`, keeping the whole
+/// trace in memory ([`Outcome::trace`]); [`run_with`] streams it instead.
 pub fn run(scenario: &Scenario, variant: Option<&str>, floor: &Floor) -> Result<Outcome, SimError> {
+    let mut buf: Vec<u8> = Vec::new();
+    let out = TraceOut {
+        writer: &mut buf,
+        every: 1,
+        name: "trace".into(),
+    };
+    let mut outcome = run_with(scenario, variant, floor, Some(out))?;
+    outcome.trace = Some(buf);
+    Ok(outcome)
+}
+
+/// Runs `scenario` (its variant `variant`) on `floor`, writing the trace lines to `trace` as the
+/// steps are taken (none when `None`). The summary, expectations and plots do not depend on
+/// the trace.
+pub fn run_with(
+    scenario: &Scenario,
+    variant: Option<&str>,
+    floor: &Floor,
+    trace: Option<TraceOut<'_>>,
+) -> Result<Outcome, SimError> {
     let v = scenario.variant(variant)?;
     let expects: Vec<&ExpectEntry> = scenario
         .expects
@@ -148,11 +145,20 @@ pub fn run(scenario: &Scenario, variant: Option<&str>, floor: &Floor) -> Result<
             .check(floor)
             .map_err(|m| scenario.error(e.line, m))?;
     }
+    if let Some(t) = &trace {
+        if t.every == 0 {
+            return Err(SimError::Io {
+                path: t.name.clone(),
+                message: "a trace keeps every N-th step with N at least 1".into(),
+            });
+        }
+    }
     let setups: Vec<_> = scenario.robots.iter().map(|r| r.setup.clone()).collect();
     let opts = SimOptions {
         dt: scenario.dt,
         start: scenario.start,
         behaviour: scenario.behaviour.clone(),
+        record: false,
         ..SimOptions::default()
     };
     let mut sim = Sim::new(floor, &setups, opts).map_err(|e| match e {
@@ -167,13 +173,21 @@ pub fn run(scenario: &Scenario, variant: Option<&str>, floor: &Floor) -> Result<
         other => other,
     })?;
     let steps = (scenario.duration_s / scenario.dt).round() as u64;
+    let names = sim.names();
+    let judges = expects
+        .iter()
+        .map(|e| Judge::new(&e.expect, e.line, &names))
+        .collect();
+    let mut rec = Recorder::new(&sim, steps + 1, judges, trace);
     for k in 0..=steps {
         sim.tick(k < steps);
+        rec.after_tick(&sim, scenario.dt)?;
     }
+    let (judges, figures, samples, records) = rec.finish()?;
     let data = sim.finish();
-    let judged = expects
-        .iter()
-        .map(|e| judge(&e.expect, e.line, &data, floor))
+    let judged = judges
+        .into_iter()
+        .map(|j| j.finish(&data.events, floor))
         .collect();
     Ok(Outcome {
         scenario: scenario.name.clone(),
@@ -181,5 +195,9 @@ pub fn run(scenario: &Scenario, variant: Option<&str>, floor: &Floor) -> Result<
         floor: floor.name.clone(),
         data,
         judged,
+        records,
+        figures,
+        samples,
+        trace: None,
     })
 }

@@ -9,7 +9,9 @@ use poinav_nav::Floor;
 use poinav_poi::runtime::Observation;
 use poinav_poi::RobotProfile;
 
-use crate::algorithm1::{self, Behaviour, Env, Mind, Perception, Sink};
+use rayon::prelude::*;
+
+use crate::algorithm1::{self, Behaviour, Env, Mind, PendingClearance, Perception, Sink};
 use crate::controller::{Command, ControlEvent, Controller, ControllerSpec, Ctx, Key, Mode};
 use crate::error::SimError;
 use crate::events::{Event, EventKind};
@@ -82,6 +84,79 @@ enum Owner {
     Robot(u32),
 }
 
+/// Per-thread buffers of a move.
+#[derive(Debug, Default)]
+struct Scratch {
+    edges: Vec<(DVec2, DVec2, Owner)>,
+    segs: Vec<(DVec2, DVec2, u32)>,
+    /// The robots the last gather looked at.
+    robots: Vec<u32>,
+}
+
+/// One robot's move in a step, before it is committed.
+#[derive(Debug, Clone)]
+struct Move {
+    pos: DVec2,
+    heading: f64,
+    omega: f64,
+    actual_speed: f64,
+    speed: f64,
+    travelled: f64,
+    footprint: Obb,
+    touched: Vec<Owner>,
+}
+
+/// Candidate edges near box `b` widened by `reach`: static edges and other robots' sides.
+fn gather(world: &World, me: usize, b: Obb, reach: f64, sc: &mut Scratch) {
+    let (lo, hi) = b.aabb();
+    let w = DVec2::splat(reach + 0.05);
+    world.segments_near(lo - w, hi + w, &mut sc.segs);
+    world.robots_near(lo - w, hi + w, me, &mut sc.robots);
+    sc.edges.clear();
+    sc.edges
+        .extend(sc.segs.iter().map(|&(a, b, o)| (a, b, Owner::Obstacle(o))));
+    for &j in &sc.robots {
+        let c = world.robot(j as usize).corners();
+        for k in 0..4 {
+            sc.edges.push((c[k], c[(k + 1) % 4], Owner::Robot(j)));
+        }
+    }
+}
+
+/// The deepest overlap of box `b` with `edges`.
+fn deepest(edges: &[(DVec2, DVec2, Owner)], b: &Obb) -> Option<(f64, DVec2, Owner)> {
+    let corners = b.corners();
+    let (lo, hi) = b.aabb();
+    let mut best: Option<(f64, DVec2, Owner)> = None;
+    for &(a, e, o) in edges {
+        // Bounding boxes apart: no overlap (the exact test is the costly part).
+        if a.x.max(e.x) <= lo.x
+            || a.x.min(e.x) >= hi.x
+            || a.y.max(e.y) <= lo.y
+            || a.y.min(e.y) >= hi.y
+        {
+            continue;
+        }
+        if let Some((d, n)) = overlap_segment(&corners, a, e) {
+            if best.is_none_or(|(bd, _, _)| d > bd) {
+                best = Some((d, n, o));
+            }
+        }
+    }
+    best
+}
+
+/// Pushes `b` out of what it overlaps (a few iterations); `None` when it cannot.
+fn resolve(edges: &[(DVec2, DVec2, Owner)], mut b: Obb) -> Option<DVec2> {
+    for _ in 0..4 {
+        match deepest(edges, &b) {
+            None => return Some(b.c),
+            Some((d, n, _)) => b.c += n * (d + SKIN),
+        }
+    }
+    deepest(edges, &b).is_none().then_some(b.c)
+}
+
 /// What a finished run leaves.
 #[derive(Debug, Clone)]
 pub struct RunData {
@@ -120,13 +195,11 @@ pub struct Sim<'f> {
     events: Vec<Event>,
     observations: Vec<(String, Observation, f64)>,
     records: Vec<StepRecord>,
+    current: Vec<StepRecord>,
     touching: Vec<Vec<Owner>>,
     arrived: Vec<bool>,
     readings: Vec<Reading>,
     perceptions: Vec<Perception>,
-    edges: Vec<(DVec2, DVec2, Owner)>,
-    seg_scratch: Vec<(DVec2, DVec2, u32)>,
-    robot_scratch: Vec<u32>,
 }
 
 fn zone_index(floor: &Floor, name: &str) -> Option<u32> {
@@ -239,7 +312,7 @@ impl<'f> Sim<'f> {
         let boxes: Vec<Obb> = robots.iter().map(|r| r.footprint()).collect();
         world.set_robots(&boxes);
         let n = robots.len();
-        let mut sim = Sim {
+        let sim = Sim {
             floor,
             nav,
             world,
@@ -252,18 +325,17 @@ impl<'f> Sim<'f> {
             events: Vec::new(),
             observations: Vec::new(),
             records: Vec::new(),
+            current: Vec::with_capacity(n),
             touching: vec![Vec::new(); n],
             arrived: vec![false; n],
             readings: Vec::with_capacity(n),
             perceptions: Vec::with_capacity(n),
-            edges: Vec::new(),
-            seg_scratch: Vec::new(),
-            robot_scratch: Vec::new(),
         };
+        let mut sc = Scratch::default();
         for i in 0..n {
             let b = sim.robots[i].footprint();
-            sim.gather(i, b, 0.0);
-            if let Some(owner) = sim.overlapping(&b) {
+            gather(&sim.world, i, b, 0.0, &mut sc);
+            if let Some((_, _, owner)) = deepest(&sc.edges, &b) {
                 return Err(SimError::Setup {
                     robot: sim.robots[i].name.clone(),
                     message: format!(
@@ -352,21 +424,49 @@ impl<'f> Sim<'f> {
 
     /// Senses, decides and records at the current time, then (when `advance`) moves every
     /// robot one step.
+    ///
+    /// Parallel over robots (rayon) and bit-identical for any thread count: every robot senses
+    /// and perceives from the same snapshot at once, then the database updates are applied in
+    /// robot order (a robot that perceived after an earlier one changed a record's roles in
+    /// this step perceives again, as the sequential loop would); the controllers decide at
+    /// once; the moves are computed at once against the boxes at the start of the step and
+    /// committed in robot order, a move redone when a robot near it moved before it.
     pub fn tick(&mut self, advance: bool) {
         let t = self.step as f64 * self.opts.dt;
         let n = self.robots.len();
         let boxes: Vec<Obb> = self.robots.iter().map(|r| r.footprint()).collect();
         self.world.set_robots(&boxes);
-        self.readings.clear();
-        for (i, r) in self.robots.iter().enumerate() {
-            self.readings.push(sensor::sense(
-                &self.world,
-                i,
-                r.state.pos,
-                r.state.heading,
-                RANGE_M,
-            ));
+        let world = &self.world;
+        self.robots
+            .par_iter()
+            .enumerate()
+            .with_min_len(8)
+            .map(|(i, r)| sensor::sense(world, i, r.state.pos, r.state.heading, RANGE_M))
+            .collect_into_vec(&mut self.readings);
+        self.perceive_all(t);
+        self.current.clear();
+        let control = self.decide_all(t);
+        let mut actions = Vec::with_capacity(n);
+        for (action, events, record) in control {
+            actions.push(action);
+            self.events.extend(events);
+            self.current.push(record);
         }
+        if self.opts.record {
+            self.records.extend_from_slice(&self.current);
+        }
+        if !advance {
+            return;
+        }
+        self.move_all(&actions, t);
+        for r in &mut self.robots {
+            r.state.brush.advance(self.opts.dt);
+        }
+        self.step += 1;
+    }
+
+    /// Algorithm 1's perception for every robot, then C-1 at the zone level.
+    fn perceive_all(&mut self, t: f64) {
         let env = Env {
             floor: self.floor,
             nav: &self.nav,
@@ -375,185 +475,184 @@ impl<'f> Sim<'f> {
             step: self.step,
             t,
         };
+        type Perceived = (Mind, Vec<Event>, Perception, Option<PendingClearance>);
+        let run = |i: usize, db: &PoiDb, mind: &Mind, reading: &Reading| -> Perceived {
+            let mut mind = mind.clone();
+            let (mut events, mut observations) = (Vec::new(), Vec::new());
+            let mut sink = Sink {
+                events: &mut events,
+                observations: &mut observations,
+            };
+            let (p, pending) = algorithm1::perceive(i, reading, &env, db, &mut mind, &mut sink);
+            (mind, events, p, pending)
+        };
+        let (db, minds, readings) = (&self.db, &self.minds, &self.readings);
+        let guesses: Vec<Perceived> = (0..self.robots.len())
+            .into_par_iter()
+            .with_min_len(8)
+            .map(|i| run(i, db, &minds[i], &readings[i]))
+            .collect();
+        self.perceptions.clear();
+        let mut changed = false;
+        for (i, guess) in guesses.into_iter().enumerate() {
+            let (mind, events, p, pending) = if changed {
+                run(i, &self.db, &self.minds[i], &self.readings[i])
+            } else {
+                guess
+            };
+            self.minds[i] = mind;
+            let split = pending.map_or(events.len(), |c| c.events_before);
+            let mut events = events.into_iter();
+            self.events.extend(events.by_ref().take(split));
+            if let Some(c) = pending {
+                let mut sink = Sink {
+                    events: &mut self.events,
+                    observations: &mut self.observations,
+                };
+                changed |= algorithm1::apply_clearance(i, &c, &env, &mut self.db, &mut sink);
+            }
+            self.events.extend(events);
+            self.perceptions.push(p);
+        }
+        let nearest: Vec<Option<(u32, f64)>> = self.perceptions.iter().map(|p| p.nearest).collect();
         let mut sink = Sink {
             events: &mut self.events,
             observations: &mut self.observations,
         };
-        self.perceptions.clear();
-        for i in 0..n {
-            let p = algorithm1::perceive(
-                i,
-                &self.readings[i],
-                &env,
-                &mut self.db,
-                &mut self.minds[i],
-                &mut sink,
-            );
-            self.perceptions.push(p);
-        }
-        let nearest: Vec<Option<(u32, f64)>> = self.perceptions.iter().map(|p| p.nearest).collect();
         algorithm1::zone_coordination(&env, &self.minds, &nearest, &mut self.db, &mut sink);
-        let mut actions = Vec::with_capacity(n);
-        let mut control = Vec::new();
-        for i in 0..n {
-            let r = &self.robots[i];
-            let p = &self.perceptions[i];
-            let ctx = Ctx {
-                t,
-                pos: r.state.pos,
-                heading: r.state.heading,
-                speed: r.state.speed,
-                limits: &r.limits,
-                left_ref: p.left_ref,
-                right_ref: p.right_ref,
-                nav: &self.nav,
-            };
-            control.clear();
-            let cmd = self.ctrls[i].command(&ctx, &mut control);
-            let mode = self.ctrls[i].mode();
-            let action = algorithm1::decide(
-                p,
-                cmd,
-                r,
-                &mut self.minds[i],
-                t,
-                mode == Mode::Keys,
-                &self.opts.behaviour,
-            );
-            actions.push(action);
-            for c in &control {
-                let kind = match c {
-                    ControlEvent::Key(key, down) => EventKind::Key {
-                        key: key.clone(),
-                        down: *down,
-                    },
-                    ControlEvent::BrushToggle => {
-                        let b = &mut self.robots[i].state.brush;
-                        b.on = !b.on;
-                        EventKind::Brush { on: b.on }
-                    }
-                };
-                self.events.push(Event {
-                    step: self.step,
+    }
+
+    /// Every robot's controller command shaped by Algorithm 1, with its events and record.
+    fn decide_all(&mut self, t: f64) -> Vec<(Command, Vec<Event>, StepRecord)> {
+        let step = self.step;
+        let (nav, floor, behaviour) = (&self.nav, self.floor, &self.opts.behaviour);
+        let (readings, perceptions) = (&self.readings, &self.perceptions);
+        self.ctrls
+            .par_iter_mut()
+            .zip(self.minds.par_iter_mut())
+            .zip(self.robots.par_iter_mut())
+            .zip(self.arrived.par_iter_mut())
+            .enumerate()
+            .with_min_len(8)
+            .map(|(i, (((ctrl, mind), robot), arrived))| {
+                let p = &perceptions[i];
+                let ctx = Ctx {
                     t,
-                    robot: self.robots[i].name.clone(),
-                    kind,
-                });
-            }
-            if mode == Mode::Arrived && !self.arrived[i] {
-                self.arrived[i] = true;
-                if let Some(z) = self.ctrls[i].target {
-                    let zr = &self.floor.zones[z as usize];
-                    self.events.push(Event {
-                        step: self.step,
-                        t,
-                        robot: self.robots[i].name.clone(),
-                        kind: EventKind::Arrived {
-                            zone: zr.id.clone(),
-                            name: zr.name.clone(),
+                    pos: robot.state.pos,
+                    heading: robot.state.heading,
+                    speed: robot.state.speed,
+                    limits: &robot.limits,
+                    left_ref: p.left_ref,
+                    right_ref: p.right_ref,
+                    nav,
+                };
+                let mut control = Vec::new();
+                let cmd = ctrl.command(&ctx, &mut control);
+                let mode = ctrl.mode();
+                let action =
+                    algorithm1::decide(p, cmd, robot, mind, t, mode == Mode::Keys, behaviour);
+                let mut events = Vec::new();
+                for c in &control {
+                    let kind = match c {
+                        ControlEvent::Key(key, down) => EventKind::Key {
+                            key: key.clone(),
+                            down: *down,
                         },
+                        ControlEvent::BrushToggle => {
+                            let b = &mut robot.state.brush;
+                            b.on = !b.on;
+                            EventKind::Brush { on: b.on }
+                        }
+                    };
+                    events.push(Event {
+                        step,
+                        t,
+                        robot: robot.name.clone(),
+                        kind,
                     });
                 }
-            }
-            if self.opts.record {
-                let r = &self.robots[i];
-                self.records.push(StepRecord {
-                    step: self.step,
+                if mode == Mode::Arrived && !*arrived {
+                    *arrived = true;
+                    if let Some(z) = ctrl.target {
+                        let zr = &floor.zones[z as usize];
+                        events.push(Event {
+                            step,
+                            t,
+                            robot: robot.name.clone(),
+                            kind: EventKind::Arrived {
+                                zone: zr.id.clone(),
+                                name: zr.name.clone(),
+                            },
+                        });
+                    }
+                }
+                let record = StepRecord {
+                    step,
                     robot: i as u32,
-                    pos: r.state.pos,
-                    heading: r.state.heading,
-                    speed: r.state.actual_speed,
-                    omega: r.state.omega,
+                    pos: robot.state.pos,
+                    heading: robot.state.heading,
+                    speed: robot.state.actual_speed,
+                    omega: robot.state.omega,
                     action,
-                    rays: self.readings[i].rays,
+                    rays: readings[i].rays,
                     roles: p.roles,
                     mode,
-                    zone: self.minds[i].zone,
-                    brush: r.state.brush,
-                });
-            }
-        }
-        if !advance {
-            return;
-        }
-        for (i, action) in actions.into_iter().enumerate() {
-            self.move_robot(i, action, t);
-            self.robots[i].state.brush.advance(self.opts.dt);
-        }
-        self.step += 1;
+                    zone: mind.zone,
+                    brush: robot.state.brush,
+                };
+                (action, events, record)
+            })
+            .collect()
     }
 
-    /// Candidate edges near box `b` widened by `reach`: static edges and other robots' sides.
-    fn gather(&mut self, me: usize, b: Obb, reach: f64) {
-        let (lo, hi) = b.aabb();
-        let w = DVec2::splat(reach + 0.05);
-        self.world
-            .segments_near(lo - w, hi + w, &mut self.seg_scratch);
-        self.world
-            .robots_near(lo - w, hi + w, me, &mut self.robot_scratch);
-        self.edges.clear();
-        self.edges.extend(
-            self.seg_scratch
-                .iter()
-                .map(|&(a, b, o)| (a, b, Owner::Obstacle(o))),
-        );
-        for &j in &self.robot_scratch {
-            let c = self.world.robot(j as usize).corners();
-            for k in 0..4 {
-                self.edges.push((c[k], c[(k + 1) % 4], Owner::Robot(j)));
-            }
+    /// Moves every robot: computed in parallel against the boxes at the start of the step,
+    /// committed in index order; a robot whose neighbours (the robots its move looked at)
+    /// already moved in this step is moved again against their new boxes, so the result is
+    /// the sequential one.
+    fn move_all(&mut self, actions: &[Command], t: f64) {
+        let this = &*self;
+        let guesses: Vec<(Move, Vec<u32>)> = (0..actions.len())
+            .into_par_iter()
+            .with_min_len(8)
+            .map_init(Scratch::default, |sc, i| {
+                let m = this.plan_move(i, actions[i], sc);
+                (m, sc.robots.clone())
+            })
+            .collect();
+        let mut moved = vec![false; actions.len()];
+        let mut sc = Scratch::default();
+        for (i, (guess, near)) in guesses.into_iter().enumerate() {
+            let m = if near.iter().any(|&j| moved[j as usize]) {
+                self.plan_move(i, actions[i], &mut sc)
+            } else {
+                guess
+            };
+            let before = *self.world.robot(i);
+            moved[i] = m.footprint != before;
+            self.commit_move(i, m, t);
         }
     }
 
-    fn deepest(&self, b: &Obb) -> Option<(f64, DVec2, Owner)> {
-        let corners = b.corners();
-        let (lo, hi) = b.aabb();
-        let mut best: Option<(f64, DVec2, Owner)> = None;
-        for &(a, e, o) in &self.edges {
-            // Bounding boxes apart: no overlap (the exact test is the costly part).
-            if a.x.max(e.x) <= lo.x
-                || a.x.min(e.x) >= hi.x
-                || a.y.max(e.y) <= lo.y
-                || a.y.min(e.y) >= hi.y
-            {
-                continue;
-            }
-            if let Some((d, n)) = overlap_segment(&corners, a, e) {
-                if best.is_none_or(|(bd, _, _)| d > bd) {
-                    best = Some((d, n, o));
-                }
-            }
-        }
-        best
-    }
-
-    fn overlapping(&self, b: &Obb) -> Option<Owner> {
-        self.deepest(b).map(|x| x.2)
-    }
-
-    /// Pushes `b` out of what it overlaps (a few iterations); `None` when it cannot.
-    fn resolve(&self, mut b: Obb) -> Option<DVec2> {
-        for _ in 0..4 {
-            match self.deepest(&b) {
-                None => return Some(b.c),
-                Some((d, n, _)) => b.c += n * (d + SKIN),
-            }
-        }
-        self.deepest(&b).is_none().then_some(b.c)
-    }
-
-    fn move_robot(&mut self, i: usize, action: Command, t: f64) {
+    /// Where robot `i` ends this step with `action`, against the robots' current boxes.
+    fn plan_move(&self, i: usize, action: Command, sc: &mut Scratch) -> Move {
         let dt = self.opts.dt;
         let (lim, st) = (&self.robots[i].limits, self.robots[i].state);
         let v = lim.next_speed(st.speed, action.v, dt);
         let omega = lim.turn(action.omega);
         let start = self.robots[i].footprint();
-        self.gather(i, start, v.abs() * dt + start.radius() * omega.abs() * dt);
+        gather(
+            &self.world,
+            i,
+            start,
+            v.abs() * dt + start.radius() * omega.abs() * dt,
+            sc,
+        );
+        let edges = &sc.edges;
         let mut heading = wrap_angle(st.heading + omega * dt);
         let mut pos = st.pos;
         if heading != st.heading {
             let turned = self.robots[i].footprint_at(pos, heading);
-            match self.resolve(turned) {
+            match resolve(edges, turned) {
                 Some(p) => pos = p,
                 None => heading = st.heading,
             }
@@ -567,7 +666,7 @@ impl<'f> Sim<'f> {
             }
             let corners = self.robots[i].footprint_at(pos, heading).corners();
             let mut hit: Option<(f64, DVec2, Owner)> = None;
-            for &(a, b, o) in &self.edges {
+            for &(a, b, o) in edges {
                 if let Some((s, n)) = sweep_segment(&corners, rem, a, b) {
                     if hit.is_none_or(|(hs, _, _)| s < hs) {
                         hit = Some((s, n, o));
@@ -592,28 +691,38 @@ impl<'f> Sim<'f> {
                 }
             }
         }
-        if self
-            .overlapping(&self.robots[i].footprint_at(pos, heading))
-            .is_some()
-        {
+        if deepest(edges, &self.robots[i].footprint_at(pos, heading)).is_some() {
             pos = st.pos;
             heading = st.heading;
         }
         let moved = pos - st.pos;
+        Move {
+            pos,
+            heading,
+            omega: wrap_angle(heading - st.heading) / dt,
+            actual_speed: moved.length() / dt,
+            speed: if touched.is_empty() {
+                v
+            } else {
+                moved.dot(DVec2::from_angle(heading)) / dt
+            },
+            travelled: moved.length(),
+            footprint: self.robots[i].footprint_at(pos, heading),
+            touched,
+        }
+    }
+
+    fn commit_move(&mut self, i: usize, m: Move, t: f64) {
         let r = &mut self.robots[i];
-        r.state.pos = pos;
-        r.state.heading = heading;
-        r.state.omega = wrap_angle(heading - st.heading) / dt;
-        r.state.actual_speed = moved.length() / dt;
-        r.state.speed = if touched.is_empty() {
-            v
-        } else {
-            moved.dot(DVec2::from_angle(heading)) / dt
-        };
-        r.state.odometer += moved.length();
+        r.state.pos = m.pos;
+        r.state.heading = m.heading;
+        r.state.omega = m.omega;
+        r.state.actual_speed = m.actual_speed;
+        r.state.speed = m.speed;
+        r.state.odometer += m.travelled;
         let b = r.footprint();
         self.world.update_robot(i, b);
-        for o in &touched {
+        for o in &m.touched {
             if !self.touching[i].contains(o) {
                 let (with, class) = match *o {
                     Owner::Obstacle(k) => {
@@ -633,13 +742,19 @@ impl<'f> Sim<'f> {
                 });
             }
         }
-        self.touching[i] = touched;
+        self.touching[i] = m.touched;
     }
 
-    /// Ends the run.
-    pub fn finish(self) -> RunData {
+    /// The records of the last [`Sim::tick`], one per robot in index order (empty before the
+    /// first), whether or not [`SimOptions::record`] keeps them all.
+    pub fn last_records(&self) -> &[StepRecord] {
+        &self.current
+    }
+
+    /// The names the trace writes for indices.
+    pub fn names(&self) -> Names {
         let f = self.floor;
-        let names = Names {
+        Names {
             robots: self.robots.iter().map(|r| r.name.clone()).collect(),
             robot_ids: self.robots.iter().map(|r| r.global_id.clone()).collect(),
             obstacles: f.obstacles.iter().map(|o| o.id.clone()).collect(),
@@ -650,7 +765,21 @@ impl<'f> Sim<'f> {
                 .iter()
                 .map(|z| z.name.clone().unwrap_or_else(|| z.id.clone()))
                 .collect(),
-        };
+        }
+    }
+
+    /// Each robot's half length and half width.
+    pub fn sizes(&self) -> Vec<(f64, f64)> {
+        self.robots
+            .iter()
+            .map(|r| (r.limits.half_length, r.limits.half_width))
+            .collect()
+    }
+
+    /// Ends the run.
+    pub fn finish(self) -> RunData {
+        let names = self.names();
+        let sizes = self.sizes();
         RunData {
             records: self.records,
             events: self.events,
@@ -660,11 +789,7 @@ impl<'f> Sim<'f> {
             steps: self.step,
             dt: self.opts.dt,
             routes: self.ctrls.iter().map(|c| c.waypoints().to_vec()).collect(),
-            sizes: self
-                .robots
-                .iter()
-                .map(|r| (r.limits.half_length, r.limits.half_width))
-                .collect(),
+            sizes,
         }
     }
 }

@@ -2,6 +2,8 @@
 //! distance, hit GlobalId and doors looked through, active roles, controller mode, zone, brush,
 //! events), written as JSON Lines with fixed decimals so equal runs give equal bytes.
 
+use std::fmt::Write;
+
 use glam::DVec2;
 
 use crate::controller::{Command, Mode};
@@ -75,14 +77,14 @@ impl Json {
     /// An integer.
     pub fn int(&mut self, v: i64) -> &mut Json {
         self.sep();
-        self.out.push_str(&v.to_string());
+        let _ = write!(self.out, "{v}");
         self
     }
 
     /// A number with at most `decimals` decimals.
     pub fn num(&mut self, v: f64, decimals: usize) -> &mut Json {
         self.sep();
-        self.out.push_str(&fixed(v, decimals));
+        push_fixed(&mut self.out, v, decimals);
         self
     }
 
@@ -130,27 +132,77 @@ impl Json {
 }
 
 fn push_str(out: &mut String, s: &str) {
-    out.push_str(&serde_json::to_string(s).expect("strings serialise"));
+    // serde_json escapes only quotes, backslashes and control characters.
+    if s.bytes().all(|b| b >= 0x20 && b != b'"' && b != b'\\') {
+        out.push('"');
+        out.push_str(s);
+        out.push('"');
+    } else {
+        out.push_str(&serde_json::to_string(s).expect("strings serialise"));
+    }
 }
 
 /// `v` with at most `decimals` decimals, deterministic: no `-0`, no trailing zeros.
 pub fn fixed(v: f64, decimals: usize) -> String {
-    if !v.is_finite() {
-        return "null".into();
-    }
-    let mut s = format!("{v:.decimals$}");
-    if s.contains('.') {
-        while s.ends_with('0') {
-            s.pop();
-        }
-        if s.ends_with('.') {
-            s.pop();
-        }
-    }
-    if s == "-0" {
-        s = "0".into();
-    }
+    let mut s = String::new();
+    push_fixed(&mut s, v, decimals);
     s
+}
+
+const POW10: [f64; 7] = [1.0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6];
+
+/// Appends [`fixed`]`(v, decimals)` to `out`. The same digits as `format!("{v:.decimals$}")`
+/// (the exact binary value correctly rounded), trimmed; the common case without the general
+/// formatter: `v` scaled by `10^decimals` in `f64` is off the exact product by at most half an
+/// ulp, so when it is farther than that from a rounding boundary (half an integer) it rounds
+/// like the exact product, and the integer is printed.
+fn push_fixed(out: &mut String, v: f64, decimals: usize) {
+    if !v.is_finite() {
+        out.push_str("null");
+        return;
+    }
+    if decimals < POW10.len() {
+        let x = v * POW10[decimals];
+        let frac = x - x.floor();
+        let margin = x.abs() * 2.3e-16 + 1e-300;
+        if x.abs() < 1e15 && (frac - 0.5).abs() > margin {
+            let m = x.round() as i64;
+            if m == 0 {
+                out.push('0');
+                return;
+            }
+            if m < 0 {
+                out.push('-');
+            }
+            let m = m.unsigned_abs();
+            let p = 10u64.pow(decimals as u32);
+            let _ = write!(out, "{}", m / p);
+            let mut f = m % p;
+            if f != 0 {
+                let mut digits = decimals;
+                while f % 10 == 0 {
+                    f /= 10;
+                    digits -= 1;
+                }
+                let _ = write!(out, ".{f:0digits$}");
+            }
+            return;
+        }
+    }
+    let start = out.len();
+    let _ = write!(out, "{v:.decimals$}");
+    if out[start..].contains('.') {
+        while out.ends_with('0') {
+            out.pop();
+        }
+        if out.ends_with('.') {
+            out.pop();
+        }
+    }
+    if &out[start..] == "-0" {
+        out.truncate(start);
+        out.push('0');
+    }
 }
 
 /// One robot in one step.
@@ -215,7 +267,17 @@ impl Names {
 
 /// Renders one record and its events as a JSON line (no newline).
 pub fn line(r: &StepRecord, dt: f64, names: &Names, events: &[&Event]) -> String {
-    let mut j = Json::default();
+    let mut s = String::new();
+    line_into(&mut s, r, dt, names, events);
+    s
+}
+
+/// Appends [`line`] to `out`.
+pub fn line_into(out: &mut String, r: &StepRecord, dt: f64, names: &Names, events: &[&Event]) {
+    let mut j = Json {
+        out: std::mem::take(out),
+        ..Json::default()
+    };
     j.begin_object();
     j.key("step").int(r.step as i64);
     j.key("t").num(r.step as f64 * dt, 6);
@@ -274,7 +336,7 @@ pub fn line(r: &StepRecord, dt: f64, names: &Names, events: &[&Event]) -> String
     }
     j.end_array();
     j.end_object();
-    j.finish()
+    *out = j.finish();
 }
 
 #[cfg(test)]
@@ -296,5 +358,58 @@ mod tests {
         j.end_array();
         j.end_object();
         assert_eq!(j.finish(), r#"{"a":1,"b":["x\"y",null]}"#);
+    }
+
+    /// The general formatter's digits, trimmed (what `fixed` wrote before its fast path).
+    fn reference(v: f64, decimals: usize) -> String {
+        if !v.is_finite() {
+            return "null".into();
+        }
+        let mut s = format!("{v:.decimals$}");
+        if s.contains('.') {
+            while s.ends_with('0') {
+                s.pop();
+            }
+            if s.ends_with('.') {
+                s.pop();
+            }
+        }
+        if s == "-0" {
+            s = "0".into();
+        }
+        s
+    }
+
+    #[test]
+    fn fast_fixed_numbers_equal_the_general_formatter() {
+        let mut seed = 0x9E37_79B9_7F4A_7C15u64;
+        let mut next = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed
+        };
+        for k in 0..400_000 {
+            let r = next();
+            let v = match k % 4 {
+                // Any magnitude.
+                0 => f64::from_bits(r),
+                // Poses and speeds.
+                1 => (r >> 11) as f64 / (1u64 << 53) as f64 * 200.0 - 100.0,
+                // Halves and exact decimals: the rounding boundaries.
+                2 => ((r % 2_000_001) as f64 - 1_000_000.0) / 2f64.powi((r >> 40) as i32 % 12),
+                _ => ((r % 20_000_001) as f64 - 10_000_000.0) * 1e-7,
+            };
+            for d in [0usize, 3, 4, 6] {
+                assert_eq!(fixed(v, d), reference(v, d), "{v:e} with {d} decimals");
+            }
+        }
+        for v in [
+            0.5, 1.5, 2.5, -0.5, 0.0000005, 0.0000015, 1e15, -1e-300, 5e-7, -5e-7,
+        ] {
+            for d in [0usize, 3, 4, 6] {
+                assert_eq!(fixed(v, d), reference(v, d), "{v:e} with {d} decimals");
+            }
+        }
     }
 }

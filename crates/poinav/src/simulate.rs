@@ -1,5 +1,6 @@
 //! `poinav simulate SCENARIO -o DIR`: runs every variant (or one) of a scenario file, writes
-//! trace, summary and plots, optionally writes what the robots found back into the IFC.
+//! the trace as it goes (thinned with `--trace-every N`, none with `--no-trace`), then summary
+//! and plots; optionally writes what the robots found back into the IFC.
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -23,6 +24,14 @@ pub struct Args {
     /// building's IFC here (with several variants: one file per variant, `NAME.<variant>.ifc`).
     #[arg(long)]
     write_back: Option<PathBuf>,
+    /// Keep every N-th step in trace.jsonl (1: every step). The trace is written as the run
+    /// goes; summary, expectations and plots use every step whatever N is.
+    #[arg(long, value_name = "N", default_value_t = 1,
+          value_parser = clap::value_parser!(u64).range(1..))]
+    trace_every: u64,
+    /// Write no trace.jsonl (summary, expectations and plots are the same as with one).
+    #[arg(long, conflicts_with = "trace_every")]
+    no_trace: bool,
 }
 
 /// One variant's result.
@@ -37,11 +46,22 @@ pub struct VariantRun {
     pub building: Prepared,
 }
 
-/// Runs `variant` (or every variant) of `scenario`, writing outputs under `out`.
+/// Runs `variant` (or every variant) of `scenario`, writing outputs under `out` (the whole
+/// trace).
 pub fn run_scenario(
     scenario: &Scenario,
     only: Option<&str>,
     out: &Path,
+) -> anyhow::Result<Vec<VariantRun>> {
+    run_scenario_with(scenario, only, out, Some(1))
+}
+
+/// [`run_scenario`] with the trace thinned to every `trace_every`-th step, or none.
+pub fn run_scenario_with(
+    scenario: &Scenario,
+    only: Option<&str>,
+    out: &Path,
+    trace_every: Option<u64>,
 ) -> anyhow::Result<Vec<VariantRun>> {
     let names: Vec<Option<String>> = match only {
         Some(v) => vec![Some(v.to_string())],
@@ -56,12 +76,17 @@ pub fn run_scenario(
     let mut runs = Vec::new();
     for variant in names {
         let building = poinav_sim::prepare(scenario, variant.as_deref(), Some(&converter))?;
-        let outcome = poinav_sim::run(scenario, variant.as_deref(), &building.floor)?;
         let dir = match &variant {
             Some(v) => out.join(v),
             None => out.to_path_buf(),
         };
-        poinav_sim::write_outputs(&dir, &outcome, &building.floor)?;
+        let (outcome, _) = poinav_sim::run_into(
+            &dir,
+            scenario,
+            variant.as_deref(),
+            &building.floor,
+            trace_every,
+        )?;
         runs.push(VariantRun {
             variant,
             dir,
@@ -96,7 +121,13 @@ pub fn report(name: &str, runs: &[VariantRun]) -> bool {
 /// Runs `poinav simulate`.
 pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     let scenario = Scenario::load(&args.scenario)?;
-    let runs = run_scenario(&scenario, args.variant.as_deref(), &args.output)?;
+    let trace_every = (!args.no_trace).then_some(args.trace_every);
+    let runs = run_scenario_with(
+        &scenario,
+        args.variant.as_deref(),
+        &args.output,
+        trace_every,
+    )?;
     let passed = report(&scenario.name, &runs);
     if let Some(target) = &args.write_back {
         let stamp =

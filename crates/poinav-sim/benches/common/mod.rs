@@ -108,3 +108,96 @@ pub fn spread(spots: &[DVec2], n: usize) -> Vec<DVec2> {
     let step = spots.len() / n;
     (0..n).map(|i| spots[i * step]).collect()
 }
+
+/// A big open floor for `n` robots: a square hall (one C-1 zone, MinInterRobotSeparation 2 m,
+/// SPEED_REDUCTION) about 3 m of floor per robot each way, outer walls and a 0.4 m column every
+/// 12 m, and `n` robots on a 3 m grid driven by keys: forward, then a short turn
+/// to the left or right that differs from robot to robot, so they spread, meet and touch.
+pub fn open_floor(n: usize) -> (Floor, Vec<poinav_sim::RobotSetup>) {
+    use poinav_nav::{FloorObstacle, FloorZone, ObstacleKind};
+    use poinav_poi::{CoordinationProtocol, Role};
+    use poinav_sim::controller::{ControllerSpec, KeyPress, KeyScheme};
+    let side = (n as f64).sqrt().ceil() as usize;
+    let size = side as f64 * 3.0 + 4.0;
+    let rect = |x0: f64, y0: f64, x1: f64, y1: f64| {
+        vec![
+            DVec2::new(x0, y0),
+            DVec2::new(x1, y0),
+            DVec2::new(x1, y1),
+            DVec2::new(x0, y1),
+        ]
+    };
+    let obstacle = |id: String, ring: Vec<DVec2>| FloorObstacle {
+        id,
+        class: "IfcWall".into(),
+        kind: ObstacleKind::Structure,
+        rings: vec![ring],
+        roles: vec![Role::Avoidance, Role::PathGuidance],
+    };
+    let mut obstacles = vec![
+        obstacle("south".into(), rect(-0.2, -0.2, size + 0.2, 0.0)),
+        obstacle("north".into(), rect(-0.2, size, size + 0.2, size + 0.2)),
+        obstacle("west".into(), rect(-0.2, 0.0, 0.0, size)),
+        obstacle("east".into(), rect(size, 0.0, size + 0.2, size)),
+    ];
+    let mut c = 12.0;
+    while c < size - 2.0 {
+        let mut d = 12.0;
+        while d < size - 2.0 {
+            obstacles.push(obstacle(
+                format!("column {c} {d}"),
+                rect(c - 1.7, d - 1.7, c - 1.3, d - 1.3),
+            ));
+            d += 12.0;
+        }
+        c += 12.0;
+    }
+    let floor = Floor {
+        name: format!("hall for {n}"),
+        obstacles,
+        zones: vec![FloorZone {
+            id: "hall".into(),
+            name: Some("Hall".into()),
+            long_name: None,
+            ring: rect(0.0, 0.0, size, size),
+            roles: vec![Role::MultiRobotZone],
+            coordination: Some((2.0, CoordinationProtocol::SpeedReduction)),
+        }],
+        ..Floor::default()
+    };
+    let robots = (0..n)
+        .map(|i| {
+            let (gx, gy) = (i % side, i / side);
+            let turn = if i % 2 == 0 { "Left" } else { "Right" };
+            let t0 = 0.1 + (i % 7) as f64 * 0.05;
+            let script = [
+                (0.0, "Up", true),
+                (t0, turn, true),
+                (t0 + 0.15, turn, false),
+            ]
+            .into_iter()
+            .map(|(t, key, down)| KeyPress {
+                t,
+                key: key.into(),
+                down,
+            })
+            .collect();
+            poinav_sim::RobotSetup {
+                name: format!("Robot{}", i + 1),
+                global_id: None,
+                profile: RobotProfile::paper(),
+                start: DVec2::new(3.5 + gx as f64 * 3.0, 3.5 + gy as f64 * 3.0),
+                heading_deg: ((i * 37) % 360) as f64,
+                controller: ControllerSpec::Keys {
+                    scheme: KeyScheme::Arrows,
+                    script,
+                },
+                priority: 0,
+                brush_on: false,
+                drive_force_n: 50.0,
+                brake_force_n: 100.0,
+            }
+        })
+        .collect();
+    (floor, robots)
+}

@@ -1,0 +1,174 @@
+//! What a run keeps while it goes, step by step after each tick: the trace lines of the kept
+//! steps streamed to a writer (rendered in parallel, written in robot order), each
+//! expectation's measures, each robot's summary figures and the plots' samples. Nothing here
+//! grows with the run's length.
+
+use std::collections::BTreeMap;
+use std::io::Write;
+
+use glam::DVec2;
+use rayon::prelude::*;
+
+use crate::error::SimError;
+use crate::events::Event;
+use crate::expect::Judge;
+use crate::samples::PlotSamples;
+use crate::step::Sim;
+use crate::trace::{self, Names, StepRecord};
+
+/// Where a run writes its trace (JSON Lines, see [`crate::trace`]).
+#[allow(missing_debug_implementations)]
+pub struct TraceOut<'w> {
+    /// The writer (buffer it: lines are written one by one).
+    pub writer: &'w mut dyn Write,
+    /// Keep every `every`-th step (1: all); the lines kept are those of the full trace.
+    pub every: u64,
+    /// Names the writer in errors (a path).
+    pub name: String,
+}
+
+/// One robot's running figures for the summary.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct RobotFigures {
+    /// Distance travelled, m.
+    pub travelled: f64,
+    /// Highest speed, m/s.
+    pub max_speed: f64,
+    /// Last position.
+    pub end: Option<(DVec2, f64)>,
+    /// Last zone.
+    pub end_zone: Option<u32>,
+    prev: Option<DVec2>,
+}
+
+impl RobotFigures {
+    fn add(&mut self, r: &StepRecord) {
+        if let Some(p) = self.prev {
+            self.travelled += p.distance(r.pos);
+        }
+        self.prev = Some(r.pos);
+        self.max_speed = self.max_speed.max(r.speed);
+        self.end = Some((r.pos, r.heading));
+        self.end_zone = r.zone;
+    }
+}
+
+/// Lines of one step's trace, rendered in parallel, in robot order.
+fn step_lines(step: &[StepRecord], dt: f64, names: &Names, events: &[Vec<&Event>]) -> Vec<String> {
+    const CHUNK: usize = 32;
+    step.par_chunks(CHUNK)
+        .enumerate()
+        .map(|(c, chunk)| {
+            let mut s = String::with_capacity(chunk.len() * 1000);
+            for (k, r) in chunk.iter().enumerate() {
+                let ev = events.get(c * CHUNK + k).map_or(&[][..], Vec::as_slice);
+                trace::line_into(&mut s, r, dt, names, ev);
+                s.push('\n');
+            }
+            s
+        })
+        .collect()
+}
+
+/// What a run keeps as it goes: call [`Recorder::after_tick`] after every [`Sim::tick`].
+#[allow(missing_debug_implementations)]
+pub struct Recorder<'w> {
+    trace: Option<TraceOut<'w>>,
+    names: Names,
+    robot_of: BTreeMap<String, usize>,
+    sizes: Vec<(f64, f64)>,
+    seen: usize,
+    judges: Vec<Judge>,
+    figures: Vec<RobotFigures>,
+    samples: PlotSamples,
+    records: u64,
+}
+
+impl<'w> Recorder<'w> {
+    /// For `sim` before its first tick, recorded `records` times (steps + 1), measuring
+    /// `judges`, writing to `trace`.
+    pub fn new(
+        sim: &Sim<'_>,
+        records: u64,
+        judges: Vec<Judge>,
+        trace: Option<TraceOut<'w>>,
+    ) -> Recorder<'w> {
+        let names = sim.names();
+        let n = names.robots.len();
+        Recorder {
+            trace,
+            robot_of: names
+                .robots
+                .iter()
+                .enumerate()
+                .map(|(i, name)| (name.clone(), i))
+                .collect(),
+            judges,
+            names,
+            sizes: sim.sizes(),
+            seen: 0,
+            figures: vec![RobotFigures::default(); n],
+            samples: PlotSamples::new(n, records),
+            records: 0,
+        }
+    }
+
+    /// The names the trace writes.
+    pub fn names(&self) -> &Names {
+        &self.names
+    }
+
+    /// Flushes the trace; hands back the judges, figures, samples and the count of records.
+    #[allow(clippy::type_complexity)]
+    pub fn finish(mut self) -> Result<(Vec<Judge>, Vec<RobotFigures>, PlotSamples, u64), SimError> {
+        if let Some(t) = self.trace.as_mut() {
+            t.writer.flush().map_err(|e| SimError::Io {
+                path: t.name.clone(),
+                message: e.to_string(),
+            })?;
+        }
+        Ok((self.judges, self.figures, self.samples, self.records))
+    }
+
+    /// Takes in the step `sim` just ticked (at step length `dt`).
+    pub fn after_tick(&mut self, sim: &Sim<'_>, dt: f64) -> Result<(), SimError> {
+        let step = sim.last_records();
+        let events = &sim.events()[self.seen..];
+        self.seen = sim.events().len();
+        for j in &mut self.judges {
+            j.observe(step, dt, &self.sizes, sim.db());
+        }
+        for (f, r) in self.figures.iter_mut().zip(step) {
+            f.add(r);
+        }
+        self.samples.observe(step);
+        self.records += 1;
+        let Some(out) = self.trace.as_mut() else {
+            return Ok(());
+        };
+        let Some(first) = step.first() else {
+            return Ok(());
+        };
+        if first.step % out.every != 0 {
+            return Ok(());
+        }
+        // Events on the line of their robot (unknown names on the first robot's), in order.
+        let mut by_robot: Vec<Vec<&Event>> = Vec::new();
+        for e in events {
+            let r = self.robot_of.get(&e.robot).copied().unwrap_or(0);
+            if by_robot.len() <= r {
+                by_robot.resize_with(r + 1, Vec::new);
+            }
+            by_robot[r].push(e);
+        }
+        for part in step_lines(step, dt, &self.names, &by_robot) {
+            out.writer
+                .write_all(part.as_bytes())
+                .map_err(|e| SimError::Io {
+                    path: out.name.clone(),
+                    message: e.to_string(),
+                })?;
+        }
+        Ok(())
+    }
+}

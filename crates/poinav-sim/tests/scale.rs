@@ -1,0 +1,147 @@
+//! Simulation at scale: a 200-robot scenario gives byte-identical traces and summaries on 1, 2
+//! and 4 threads; `trace every N` keeps exactly every N-th step of the full trace; a run
+//! without a trace has the same summary, expectations and plots as one with it; the trace
+//! streamed to a file equals the one kept in memory.
+
+use std::path::Path;
+
+use poinav_sim::{prepare, run, run_into, run_with, Outcome, Scenario, TraceOut};
+
+/// 200 robots, five in each of the 40 rooms of a 20-rooms-per-side test building, each driving
+/// to another room through the corridor (a C-1 zone): doors measured by many robots at once,
+/// robots meeting, jams at the doors.
+fn crowd() -> Scenario {
+    let rooms = 20usize;
+    let mut s = format!(
+        "name = \"crowd\"\nduration_s = 4.0\n[building]\ndemo = {{ rooms_per_side = {rooms} }}\n"
+    );
+    let mut k = 0;
+    for side in 0..2 {
+        for i in 0..rooms {
+            let x0 = i as f64 * 4.2;
+            let y0 = if side == 0 { 0.0 } else { 6.8 };
+            let heading = if side == 0 { 90.0 } else { -90.0 };
+            for (dx, dy) in [(1.0, 1.0), (3.0, 1.0), (1.0, 3.0), (3.0, 3.0), (2.0, 2.0)] {
+                k += 1;
+                let room = side * rooms + i;
+                let mut to = (room * 7 + 3 + k) % (2 * rooms);
+                if to == room {
+                    to = (to + 1) % (2 * rooms);
+                }
+                s.push_str(&format!(
+                    "[[robot]]\nname = \"R{k}\"\nstart = {{ x = {}, y = {}, heading_deg = {heading} }}\ncontroller = {{ kind = \"route\", to = \"Room {}\" }}\n",
+                    x0 + dx,
+                    y0 + dy,
+                    to + 1
+                ));
+            }
+        }
+    }
+    s.push_str("[[expect]]\nkind = \"no-contact\"\n[[expect]]\nkind = \"speed-range\"\nrobot = \"R1\"\nreaches_m_s = 0.5\n");
+    Scenario::from_toml(&s, "crowd.toml", Path::new(".")).unwrap()
+}
+
+fn summary(o: &Outcome) -> String {
+    serde_json::to_string_pretty(&o.summary()).unwrap()
+}
+
+#[test]
+fn two_hundred_robots_give_the_same_bytes_on_one_two_and_four_threads() {
+    let s = crowd();
+    let floor = prepare(&s, None, None).unwrap().floor;
+    let runs: Vec<Outcome> = [1, 2, 4]
+        .into_iter()
+        .map(|threads| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap()
+                .install(|| run(&s, None, &floor).unwrap())
+        })
+        .collect();
+    let trace = runs[0].trace.as_deref().unwrap();
+    // 241 steps (4 s at 60 Hz, both ends) of 200 robots.
+    assert_eq!(trace.iter().filter(|&&b| b == b'\n').count(), 241 * 200);
+    for r in &runs[1..] {
+        assert!(r.trace.as_deref().unwrap() == trace, "traces differ");
+        assert_eq!(summary(r), summary(&runs[0]));
+    }
+    // The run is not trivial: robots moved, met and measured doors.
+    let o = &runs[0];
+    let moved = o.figures.iter().filter(|f| f.travelled > 1.0).count();
+    assert!(moved > 100, "{moved} robots moved more than 1 m");
+    let count = |kind: &str| o.events().iter().filter(|e| e.kind.tag() == kind).count();
+    assert!(
+        count("clearance") >= 20,
+        "{} clearances",
+        count("clearance")
+    );
+    assert!(
+        count("robot-role") > 0,
+        "robots met: {}",
+        count("robot-role")
+    );
+}
+
+#[test]
+fn a_thinned_trace_keeps_every_nth_step_of_the_full_one() {
+    let s = crowd();
+    let floor = prepare(&s, None, None).unwrap().floor;
+    let full = run(&s, None, &floor).unwrap();
+    let mut thin: Vec<u8> = Vec::new();
+    let out = TraceOut {
+        writer: &mut thin,
+        every: 7,
+        name: "thin".into(),
+    };
+    let thinned = run_with(&s, None, &floor, Some(out)).unwrap();
+    let text = String::from_utf8(full.trace.clone().unwrap()).unwrap();
+    let kept: String = text
+        .lines()
+        .filter(|l| {
+            let v: serde_json::Value = serde_json::from_str(l).unwrap();
+            v["step"].as_u64().unwrap() % 7 == 0
+        })
+        .map(|l| format!("{l}\n"))
+        .collect();
+    // Steps 0, 7, ..., 238: 35 steps of 200 robots.
+    assert_eq!(kept.lines().count(), 35 * 200);
+    assert!(String::from_utf8(thin).unwrap() == kept);
+    assert_eq!(summary(&thinned), summary(&full));
+}
+
+#[test]
+fn without_a_trace_summary_expectations_and_plots_are_unchanged() {
+    let s = crowd();
+    let floor = prepare(&s, None, None).unwrap().floor;
+    let with = tempfile::tempdir().unwrap();
+    let without = tempfile::tempdir().unwrap();
+    let (a, _) = run_into(with.path(), &s, None, &floor, Some(1)).unwrap();
+    // A trace left by an earlier run is removed, not kept beside the new summary.
+    std::fs::write(without.path().join("trace.jsonl"), "old\n").unwrap();
+    let (b, written) = run_into(without.path(), &s, None, &floor, None).unwrap();
+    assert_eq!(written.len(), 4);
+    assert!(!without.path().join("trace.jsonl").exists());
+    assert_eq!(a.judged, b.judged);
+    for name in [
+        "summary.json",
+        "trajectories.svg",
+        "speed.svg",
+        "distance.svg",
+    ] {
+        let x = std::fs::read(with.path().join(name)).unwrap();
+        let y = std::fs::read(without.path().join(name)).unwrap();
+        assert!(x == y, "{name} differs");
+    }
+    // The streamed trace equals the one kept in memory, byte for byte.
+    let memory = run(&s, None, &floor).unwrap();
+    let streamed = std::fs::read(with.path().join("trace.jsonl")).unwrap();
+    assert!(streamed == memory.trace.unwrap());
+    assert_eq!(a.records, 241);
+    // No temporary file is left behind.
+    let names: Vec<String> = std::fs::read_dir(with.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    assert_eq!(names.len(), 5, "{names:?}");
+}
