@@ -250,6 +250,13 @@ pub fn audit(args: &AuditArgs) -> anyhow::Result<ExitCode> {
     // Statuses come from each profile's own width rule; the floors carry the first profile's roles.
     let (building, warnings) = building(&args.file, &profiles[0])?;
     print_warnings(&warnings);
+    if let Some(dir) = args.output.parent().filter(|d| d.is_file()) {
+        anyhow::bail!(
+            "cannot write {}: {} is a file, not a folder",
+            args.output.display(),
+            dir.display()
+        );
+    }
     // Unknown or ambiguous spaces are bad input: refused before anything is written.
     for want in &args.require_reachable {
         building.select_space(want)?;
