@@ -6,6 +6,7 @@
 # model the inspect report (.json), the enriched IFC (.poi.ifc), the semantic CSV (.csv), the
 # IDS (.ids), the enrichment summary (.enrich.json), a floor plan of its first storey (.svg) and
 # the accessibility audit for the paper's robot (.audit/report.html), plus a summary table.
+# A plan or audit that fails is reported (its messages in .plan.log, .audit/log), not hidden.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
@@ -25,9 +26,13 @@ for f in "$shared"/ifc/*.ifc; do
     name="$(basename "$f" .ifc)"
     "$bin" inspect "$f" --json > "$out/$name.json"
     "$bin" enrich "$f" -o "$out/$name.poi.ifc" --csv "$out/$name.csv" --ids "$out/$name.ids" --json > "$out/$name.enrich.json"
-    "$bin" plan "$f" -o "$out/$name.svg" > /dev/null 2>&1 || true
+    # Plan and audit may fail on models without a building (railway): say so, keep going; their
+    # messages are in the .log files.
+    "$bin" plan "$f" -o "$out/$name.svg" > /dev/null 2> "$out/$name.plan.log" \
+        || echo "demo: plan of $name failed (exit $?), see $out/$name.plan.log" >&2
     mkdir -p "$out/$name.audit"
-    "$bin" audit "$f" -o "$out/$name.audit/report.html" > /dev/null 2>&1 || true
+    "$bin" audit "$f" -o "$out/$name.audit/report.html" > /dev/null 2> "$out/$name.audit/log" \
+        || echo "demo: audit of $name failed (exit $?), see $out/$name.audit/log" >&2
     python3 - "$out/$name.json" "$out/$name.enrich.json" "$name" <<'PY' | tee -a "$out/summary.txt"
 import json, sys
 r = json.load(open(sys.argv[1]))
@@ -37,7 +42,7 @@ print(f"{sys.argv[3]:<44} {r['schema']:<12} {r['length_unit_m']:>8g} {len(r['sto
 PY
 done
 echo
-"$bin" enrich "$shared/ifc/office-a.ifc" -o "$out/office-a.poi.ifc" | head -12
+"$bin" enrich "$shared/ifc/office-a.ifc" -o "$out/office-a.poi.ifc"
 echo
 echo "demo: report in ${out%/corpus}/report.html, corpus outputs in $out"
 echo "demo: drive the robots in the browser with"

@@ -17,10 +17,14 @@ export POINAV_PYTHON="$root/.venv/bin/python"
 bash tests/js/setup.sh
 
 cargo fmt --all --check
+# The tests build with the dev profile (Cargo.toml: no debug info for dependencies, line
+# tables for ours), which keeps the build and its ~45 linked test binaries small.
 cargo clippy --workspace --all-targets --locked -- -D warnings
 cargo test --workspace --locked
 
 fuzz_seconds="${POINAV_FUZZ_SECONDS:-15}"
 if [[ $fuzz_seconds != 0 ]]; then
+    # POINAV_FUZZ_DEV=1: an unoptimised build, much shorter; not yet the default, as debug
+    # assertions and overflow checks then run in every dependency too (not yet tried in CI).
     bash scripts/fuzz.sh "$fuzz_seconds"
 fi

@@ -251,10 +251,7 @@ pub fn audit_profile(nav: &Navigator<'_>, start: Option<&str>) -> Result<Profile
             ) && t.zone_node(b, "outside", None).is_none() =>
         {
             let floor = match s.parse::<Place>().ok().and_then(|p| p.floor) {
-                Some(f) => Some(
-                    b.floor_index(&f)
-                        .ok_or_else(|| NavError::NotFound(format!("no storey named `{f}`")))?,
-                ),
+                Some(f) => Some(b.find_storey(&f)?),
                 None => None,
             };
             let entrances: Vec<usize> = t
@@ -263,10 +260,7 @@ pub fn audit_profile(nav: &Navigator<'_>, start: Option<&str>) -> Result<Profile
                 .filter(|d| d.exterior() && floor.is_none_or(|f| f == d.floor))
                 .map(|d| d.node)
                 .collect();
-            let labels = entrances
-                .iter()
-                .map(|&n| t.nodes[n].label().to_string())
-                .collect();
+            let labels = entrances.iter().map(|&n| entrance_label(nav, n)).collect();
             (entrances, labels)
         }
         Some(s) => {
@@ -276,24 +270,18 @@ pub fn audit_profile(nav: &Navigator<'_>, start: Option<&str>) -> Result<Profile
                     "the audit's start must be a space, not a point: `{s}`"
                 )));
             };
-            let floor = match &place.floor {
-                Some(f) => Some(
-                    b.floor_index(f)
-                        .ok_or_else(|| NavError::NotFound(format!("no storey named `{f}`")))?,
-                ),
-                None => None,
-            };
-            let node = t
-                .zone_node(b, name, floor)
-                .ok_or_else(|| NavError::NotFound(format!("no space named `{name}`")))?;
+            let floor = place
+                .floor
+                .as_deref()
+                .map(|f| b.find_storey(f))
+                .transpose()?;
+            let space = b.find_space(name, floor, place.floor.as_deref())?;
+            let node = t.zone_nodes[space.floor][space.zone];
             (vec![node], vec![s.to_string()])
         }
         None => {
             let entrances = t.entrances();
-            let labels = entrances
-                .iter()
-                .map(|&n| t.nodes[n].label().to_string())
-                .collect();
+            let labels = entrances.iter().map(|&n| entrance_label(nav, n)).collect();
             (entrances, labels)
         }
     };
@@ -406,32 +394,73 @@ pub fn audit_profile(nav: &Navigator<'_>, start: Option<&str>) -> Result<Profile
     })
 }
 
+/// How the report names an entrance (door node `node`) among the starts: `Level 1 door 184606
+/// into 101 ENTRY`: the storey, the door's name (for a Revit-style `Family:Type:Id` name its
+/// last part, else the GlobalId's first 8 characters when it has none) and the space it leads
+/// into (Name and LongName).
+pub fn entrance_label(nav: &Navigator<'_>, node: usize) -> String {
+    let t = &nav.topology;
+    let n = &t.nodes[node];
+    let floor = &nav.building.floors[n.floor];
+    let door = short_name(n.name.as_deref(), &n.element);
+    let into = t
+        .doors
+        .iter()
+        .find(|d| d.node == node)
+        .and_then(|d| d.zones.iter().flatten().next())
+        .map(|&z| {
+            let z = &floor.zones[z];
+            let words: Vec<&str> = [z.name.as_deref(), z.long_name.as_deref()]
+                .into_iter()
+                .flatten()
+                .collect();
+            if words.is_empty() {
+                format!(" into {}", z.id)
+            } else {
+                format!(" into {}", words.join(" "))
+            }
+        })
+        .unwrap_or_default();
+    format!("{} door {door}{into}", floor.name)
+}
+
+/// A door's name for lists: the name, the last part of a Revit-style `Family:Type:Id` name,
+/// else the first 8 characters of the GlobalId.
+fn short_name(name: Option<&str>, id: &str) -> String {
+    let name = name.map(str::trim).filter(|n| !n.is_empty());
+    match name.map(|n| n.rsplit(':').next().unwrap_or(n).trim()) {
+        Some(n) if !n.is_empty() => n.to_string(),
+        _ => id.chars().take(8).collect(),
+    }
+}
+
 impl AuditReport {
-    /// Messages for every `required` space (Name, LongName or GlobalId, `@Storey` optional)
-    /// that some profile cannot reach, or that does not exist; empty when all are reachable.
-    pub fn unreachable_required(&self, required: &[String]) -> Vec<String> {
+    /// Messages for every `required` space (a GlobalId, Name or LongName, `@Storey` optional,
+    /// selecting one space of `building`, as [`Building::select_space`]) that some profile
+    /// cannot reach; empty when all are reachable. An unknown or ambiguous name is an error.
+    pub fn unreachable_required(
+        &self,
+        building: &Building,
+        required: &[String],
+    ) -> Result<Vec<String>, NavError> {
         let mut out = Vec::new();
         for want in required {
-            let (name, floor) = match want.rsplit_once('@') {
-                Some((n, f)) => (n.trim(), Some(f.trim())),
-                None => (want.trim(), None),
-            };
+            let space = building.select_space(want)?;
+            let id = &building.space(space).id;
             for p in &self.profiles {
-                let hit = p.spaces.iter().find(|s| {
-                    (s.name.as_deref() == Some(name) || s.id == name)
-                        && floor.is_none_or(|f| s.floor_name == f)
-                });
-                match hit {
-                    None => out.push(format!("{}: no space named `{want}`", p.profile)),
-                    Some(s) if !s.reachable => out.push(format!(
+                let hit = p
+                    .spaces
+                    .iter()
+                    .find(|s| s.floor == space.floor && &s.id == id);
+                if let Some(s) = hit.filter(|s| !s.reachable) {
+                    out.push(format!(
                         "{}: {want} is unreachable: {}",
                         p.profile, s.reason
-                    )),
-                    Some(_) => {}
+                    ));
                 }
             }
         }
-        out
+        Ok(out)
     }
 
     /// As JSON.
@@ -550,6 +579,7 @@ figure{margin:1em 0}svg{max-width:100%;height:auto;border:1px solid #ddd}\n\
     for (pi, p) in report.profiles.iter().enumerate() {
         let [full, restricted, blocked, pending] = p.door_counts();
         let (reach, unreach) = p.space_counts();
+        let doorways = p.doors.iter().filter(|d| d.doorless).count();
         let _ = writeln!(h, "<section>\n<h2>Profile {}</h2>", esc(&p.profile));
         let _ = writeln!(
             h,
@@ -566,7 +596,9 @@ figure{margin:1em 0}svg{max-width:100%;height:auto;border:1px solid #ddd}\n\
         );
         let _ = writeln!(
             h,
-            "<p>Doors: {full} FULL_ACCESS, {restricted} RESTRICTED, {blocked} BLOCKED, {pending} PENDING_VALIDATION. Spaces: {reach} reachable, {unreach} unreachable.</p>"
+            "<p>Door passages: {} ({} doors, {doorways} doorways, openings without a door): {full} FULL_ACCESS, {restricted} RESTRICTED, {blocked} BLOCKED, {pending} PENDING_VALIDATION. Spaces: {reach} reachable, {unreach} unreachable. In the drawings, circles mark the landings of stairs, ramps and lifts, filled with the connection's status colour.</p>",
+            p.doors.len(),
+            p.doors.len() - doorways
         );
         for c in &p.transitions {
             if c.status == AccessibilityStatus::PendingValidation {

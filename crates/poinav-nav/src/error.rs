@@ -1,8 +1,10 @@
-//! Errors of navigation: bad input, unknown places, unreachable goals, output failures.
+//! Errors of navigation: bad input, unknown or ambiguous places, places without room for the
+//! robot, unreachable goals, output failures.
 
 use std::path::PathBuf;
 
 use crate::route::Unreachable;
+use crate::space_name::Ambiguous;
 
 /// What went wrong.
 #[derive(Debug, thiserror::Error)]
@@ -13,6 +15,13 @@ pub enum NavError {
     /// No storey, space or point by that name.
     #[error("{0}")]
     NotFound(String),
+    /// A name that fits several spaces: the candidates, each with what selects only it.
+    #[error("{0}")]
+    Ambiguous(Box<Ambiguous>),
+    /// The robot has no room: the place named has no spot where it fits, or no entrance lets
+    /// it in (the answer is no, as for [`NavError::Unreachable`]; not a bad input).
+    #[error("{0}")]
+    NoRoom(String),
     /// No route: the reason names the door or transition that blocks it.
     #[error("{0}")]
     Unreachable(Box<Unreachable>),

@@ -8,6 +8,8 @@
 //!   ([`NavGrid`]).
 //! - [`graph`]: the [`Topology`] of zones, doors and landings.
 //! - [`navigator`]: a building prepared for one profile ([`Navigator`]); [`route`] plans on it.
+//! - [`space_name`]: which space a GlobalId, Name, LongName or `Name@Storey` selects
+//!   ([`Building::find_space`]); an ambiguous name is an error listing the candidates.
 //! - [`audit`]: reachability and door statuses per profile, JSON, SVG ([`svg`]) and HTML.
 //! - [`nav2`]: map, masks, filter parameters and route graph for Nav2.
 //!
@@ -67,6 +69,7 @@ pub mod nav2;
 pub mod navigator;
 pub mod polygon;
 pub mod route;
+pub mod space_name;
 pub mod speed;
 pub mod svg;
 
@@ -79,4 +82,5 @@ pub use grid::{CellState, FurnitureMode, GridOptions, InflationOptions, NavGrid,
 pub use nav2::{write_bundle, Nav2Options};
 pub use navigator::{NavOptions, Navigator};
 pub use route::{Place, Route, Unreachable};
+pub use space_name::{Ambiguous, SpaceRef};
 pub use speed::RoleSpeeds;

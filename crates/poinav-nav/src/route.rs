@@ -162,6 +162,8 @@ pub struct PassedDoor {
     pub clear_width_m: f64,
     /// POI roles.
     pub roles: Vec<Role>,
+    /// An opening without a door (a doorway).
+    pub doorless: bool,
 }
 
 /// A vertical connection on a route.
@@ -540,18 +542,7 @@ impl Navigator<'_> {
     fn floor_index(&self, name: Option<&str>) -> Result<Option<usize>, NavError> {
         match name {
             None => Ok(None),
-            Some(n) => self.building.floor_index(n).map(Some).ok_or_else(|| {
-                let all: Vec<&str> = self
-                    .building
-                    .floors
-                    .iter()
-                    .map(|f| f.name.as_str())
-                    .collect();
-                NavError::NotFound(format!(
-                    "no storey named `{n}`; storeys: {}",
-                    all.join(", ")
-                ))
-            }),
+            Some(n) => self.building.find_storey(n).map(Some),
         }
     }
 
@@ -584,34 +575,13 @@ impl Navigator<'_> {
         let floor = self.floor_index(place.floor.as_deref())?;
         match &place.target {
             Target::Zone(name) => {
-                let node = self
-                    .topology
-                    .zone_node(self.building, name, floor)
-                    .ok_or_else(|| {
-                        let spaces: usize = self
-                            .building
-                            .floors
-                            .iter()
-                            .enumerate()
-                            .filter(|(i, _)| floor.is_none_or(|f| f == *i))
-                            .map(|(_, f)| f.zones.len())
-                            .sum();
-                        NavError::NotFound(format!(
-                            "no space named `{name}`{}{}",
-                            match &place.floor {
-                                Some(f) => format!(" on storey `{f}`"),
-                                None => String::new(),
-                            },
-                            if spaces == 0 {
-                                " (the model has no spaces there: give a point, `x,y@Storey`)"
-                            } else {
-                                ""
-                            }
-                        ))
-                    })?;
+                let space = self
+                    .building
+                    .find_space(name, floor, place.floor.as_deref())?;
+                let node = self.topology.zone_nodes[space.floor][space.zone];
                 let n = &self.topology.nodes[node];
                 let cell = self.zone_cell(n.floor, n.index).ok_or_else(|| {
-                    NavError::NotFound(format!(
+                    NavError::NoRoom(format!(
                         "space `{name}` has no spot where the robot fits (inflated by {:.3} m)",
                         self.floors[n.floor].grid.lethal_radius_m
                     ))
@@ -633,7 +603,7 @@ impl Navigator<'_> {
                     .ok_or_else(|| NavError::NotFound("the building has no storey".into()))?
                     .grid;
                 let cell = grid.nearest_traversable(*p, 1.0).ok_or_else(|| {
-                    NavError::NotFound(format!(
+                    NavError::NoRoom(format!(
                         "no free spot for the robot within 1 m of ({:.2}, {:.2})",
                         p.x, p.y
                     ))
@@ -799,7 +769,7 @@ impl Navigator<'_> {
             }
         }
         best.map(|(_, s)| s).ok_or_else(|| {
-            NavError::NotFound(if closed.is_empty() {
+            NavError::NoRoom(if closed.is_empty() {
                 "no entrance has room for the robot outside it".to_string()
             } else {
                 format!(
@@ -826,7 +796,7 @@ impl Navigator<'_> {
             .collect();
         if exterior.is_empty() {
             let spaces: usize = self.building.floors.iter().map(|f| f.zones.len()).sum();
-            return Err(NavError::NotFound(if spaces == 0 {
+            return Err(NavError::NoRoom(if spaces == 0 {
                 "the building has no entrance: it has no spaces, so no door leads from a space to the outside".into()
             } else {
                 "the building has no entrance (a door with a space on one side only)".into()
@@ -1072,6 +1042,7 @@ impl Navigator<'_> {
                     status: g.doors[d as usize].status,
                     clear_width_m: door.clear_width_m,
                     roles: door.roles.clone(),
+                    doorless: door.doorless,
                 });
             }
             last_door = d;

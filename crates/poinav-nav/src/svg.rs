@@ -57,6 +57,10 @@ impl View {
     }
 }
 
+/// The legend's words for the circles at the landings of stairs, ramps and lifts (filled with
+/// the connection's status colour).
+const LANDING_LABEL: &str = "stair/ramp/lift landing, status colour";
+
 /// The drawing of storey `floor_index` of `building` for the audit `audit`.
 pub fn audit_svg(
     building: &Building,
@@ -268,6 +272,19 @@ pub fn audit_svg(
             ly + 0.8 * box_w,
         );
     }
+    // The landings' marker: a circle in its connection's status colour.
+    let x = margin + 3.0 * step;
+    let landing_fs = (0.4 * unit).min((step - 1.5 * box_w) / (0.6 * LANDING_LABEL.len() as f64));
+    let _ = writeln!(
+        s,
+        "<circle cx=\"{:.3}\" cy=\"{:.3}\" r=\"{:.3}\" fill=\"white\" stroke=\"black\" stroke-width=\"{:.3}\"/><text x=\"{:.3}\" y=\"{:.3}\" font-size=\"{landing_fs:.3}\">{LANDING_LABEL}</text>",
+        x + box_w / 2.0,
+        ly + box_w / 2.0,
+        0.3 * unit,
+        0.02 * unit,
+        x + 1.3 * box_w,
+        ly + 0.8 * box_w,
+    );
     let bar = nice_length(size.x / 4.0);
     let by = ly + 2.2 * unit;
     let _ = writeln!(

@@ -116,15 +116,19 @@ fn narrowing_room_2_door_cuts_room_2_off_and_names_the_door() {
     assert!(space(small, "Room 2").reachable);
     assert_eq!(small.door_counts(), [6, 0, 0, 0]);
     // --require-reachable.
-    let fails = report.unreachable_required(&["Room 2".into(), "Room 3".into()]);
+    let fails = report
+        .unreachable_required(&building, &["Room 2".into(), "Room 3".into()])
+        .unwrap();
     assert_eq!(fails.len(), 1, "{fails:?}");
     assert!(fails[0].starts_with("paper-robot: Room 2 is unreachable: blocked by Door Room 2"));
     assert!(report
-        .unreachable_required(&["Room 3".into(), "Room 6@Ground floor".into()])
+        .unreachable_required(&building, &["Room 3".into(), "Room 6@Ground floor".into()])
+        .unwrap()
         .is_empty());
-    let missing = report.unreachable_required(&["Room 9".into()]);
-    assert_eq!(missing.len(), 2);
-    assert!(missing[0].contains("no space named `Room 9`"));
+    let missing = report
+        .unreachable_required(&building, &["Room 9".into()])
+        .unwrap_err();
+    assert_eq!(missing.to_string(), "no space named `Room 9`");
 }
 
 #[test]
@@ -137,7 +141,13 @@ fn office_from_its_entrances() {
     )
     .unwrap();
     let p = &report.profiles[0];
-    assert_eq!(p.starts, ["Entrance West", "Entrance East"]);
+    assert_eq!(
+        p.starts,
+        [
+            "Office level door Entrance West into Corridor A",
+            "Office level door Entrance East into Corridor B"
+        ]
+    );
     assert_eq!(p.door_counts(), [85, 14, 1, 0]);
     assert!(p
         .doors

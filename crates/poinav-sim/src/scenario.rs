@@ -236,6 +236,9 @@ fn line_of(text: &str, offset: usize) -> usize {
         + 1
 }
 
+/// What a scenario file looks like, for messages about files that are not one.
+const SCENARIO_SHAPE: &str = "a scenario is a TOML file with `name = \"...\"`, `duration_s = 10.0`, a `[building]` table (`demo = {}` or `ifc = \"model.ifc\"`), `[[robot]]` tables and optional `[[expect]]` tables (docs/scenarios.md; examples in crates/poinav-sim/scenarios/)";
+
 impl Scenario {
     /// Reads a scenario file.
     pub fn load(path: &Path) -> Result<Scenario, SimError> {
@@ -256,7 +259,14 @@ impl Scenario {
         };
         let raw: RawScenario = toml::from_str(text).map_err(|e| {
             let line = e.span().map_or(1, |s| line_of(text, s.start));
-            err(line, e.message().trim().to_string())
+            let message = e.message().trim();
+            if text.parse::<toml::Table>().is_err() {
+                return err(
+                    line,
+                    format!("not a scenario file: it is not TOML ({message}); {SCENARIO_SHAPE}"),
+                );
+            }
+            err(line, message.to_string())
         })?;
         let at = |s: &std::ops::Range<usize>| line_of(text, s.start);
         if !(raw.duration_s.is_finite() && raw.duration_s > 0.0) {

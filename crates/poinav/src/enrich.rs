@@ -5,7 +5,6 @@ use std::collections::BTreeMap;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use anyhow::Context;
 use poinav_ifc::Model;
 use poinav_poi::{classify, AccessibilityStatus, Classification, RobotProfile, WriteOptions};
 use serde::Serialize;
@@ -139,6 +138,12 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
             out.display(),
             dir.display()
         );
+        anyhow::ensure!(
+            !out.is_dir(),
+            "cannot write {}: it is a folder; name a file (e.g. {})",
+            out.display(),
+            out.join("model.poi.ifc").display()
+        );
     }
     let size = std::fs::metadata(&args.input).map(|m| m.len()).unwrap_or(0);
     let bar = progress(size > 5_000_000 && !args.json);
@@ -159,9 +164,8 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         timestamp: timestamp.clone(),
     };
     let editor = poinav_poi::write_enrichment(&model, primary, &opts)?;
-    editor
-        .write(&args.output)
-        .with_context(|| format!("writing {}", args.output.display()))?;
+    // The error names the file and the cause.
+    editor.write(&args.output)?;
     bar.inc(1);
     let metres = poinav_ifc::units::length_unit(&model).metres_per_unit;
     if let Some(csv) = &args.csv {
@@ -222,11 +226,14 @@ fn print_summary(s: &Summary) {
         s.schema,
         s.length_unit_m
     );
+    let sets = poinav_poi::pset_names(&s.pset_prefix);
     outln!(
-        "  {} elements, {} instances added, property sets `{}*`",
+        "  {} elements, {} instances added, property sets {}, {}, {}",
         s.elements,
         s.instances_added,
-        s.pset_prefix
+        sets.classification,
+        sets.accessibility,
+        sets.coordination
     );
     let join = |m: &BTreeMap<&str, usize>| {
         m.iter()

@@ -4,7 +4,6 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use anyhow::Context;
 use poinav_export::SceneInput;
 use poinav_ifc::{spatial, units, Model};
 use poinav_poi::classify;
@@ -66,8 +65,7 @@ pub fn run(export: &Export) -> anyhow::Result<ExitCode> {
     match format {
         "glb" => poinav_export::glb::write_glb(&args.output, &scene),
         _ => poinav_export::fbx::write_fbx(&args.output, &scene),
-    }
-    .with_context(|| format!("writing {}", args.output.display()))?;
+    }?; // The error names the file and the cause.
     let triangles: usize = meshes.elements.iter().map(|e| e.mesh.triangles.len()).sum();
     outln!(
         "wrote {}: {} elements ({} triangles) on {} storeys; {} elements without geometry ({} failed, {} without a representation)",

@@ -33,7 +33,7 @@ use clap::{Parser, Subcommand};
 
 /// Make building models (IFC) robot-ready.
 #[derive(Debug, Parser)]
-#[command(name = "poinav", version, about)]
+#[command(name = "poinav", version, about, after_help = EXIT_CODES)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -52,7 +52,7 @@ enum Command {
     /// Draw a storey's floor plan as SVG: walls with door gaps, doors coloured by accessibility,
     /// spaces with names, scale bar.
     Plan(plan::Args),
-    /// Export the model in other formats: 3D (GLB, FBX).
+    /// Export the model in other formats: 3D (GLB, FBX) and Nav2 maps per storey.
     #[command(subcommand)]
     Export(export::Export),
     /// Run a simulation scenario (robots with 5-ray sensors, Algorithm 1); exit 1 when an expectation fails.
@@ -119,6 +119,32 @@ fn broken_pipe(e: &anyhow::Error) -> bool {
     })
 }
 
+/// `e` and its causes joined by `: `, leaving out a cause whose text the message already ends
+/// with (errors that name their source in their own message, as `cannot write x: {source}`).
+pub fn error_text(e: &anyhow::Error) -> String {
+    let mut text = String::new();
+    for link in e.chain() {
+        let part = link.to_string();
+        if text.ends_with(&part) {
+            continue;
+        }
+        if !text.is_empty() {
+            text.push_str(": ");
+        }
+        text.push_str(&part);
+    }
+    text
+}
+
+/// The exit codes, for `--help` (the README has the same table).
+const EXIT_CODES: &str = "Exit codes:
+  0  done (the route exists, every required space is reachable, every expectation held)
+  1  the answer is no: no route (unreachable, or no room for the robot), an
+     `audit --require-reachable` space not reachable, a `simulate` expectation failed
+  2  bad input: a file that cannot be read, an unknown or ambiguous space or storey name,
+     an option out of range, an output that cannot be written, `inspect --strict` with
+     diagnostics";
+
 /// Exit code for unreadable input, or diagnostics under `--strict`.
 pub const EXIT_BAD_INPUT: u8 = 2;
 
@@ -142,7 +168,7 @@ fn main() -> ExitCode {
         // The reader of our standard output stopped early: not an error of ours.
         Err(e) if broken_pipe(&e) => ExitCode::SUCCESS,
         Err(e) => {
-            errln!("error: {e:#}");
+            errln!("error: {}", error_text(&e));
             ExitCode::from(EXIT_BAD_INPUT)
         }
     }

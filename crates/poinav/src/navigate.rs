@@ -7,7 +7,8 @@ use std::process::ExitCode;
 use anyhow::Context;
 use poinav_ifc::Model;
 use poinav_nav::{
-    AuditOptions, Building, FurnitureMode, GridOptions, Nav2Options, NavOptions, Navigator, Place,
+    AuditOptions, Building, FurnitureMode, GridOptions, Nav2Options, NavError, NavOptions,
+    Navigator, Place, Route,
 };
 use poinav_poi::{classify, RobotProfile, RuleSet};
 
@@ -74,7 +75,9 @@ impl GridArgs {
 pub struct RouteArgs {
     /// The IFC file (never modified).
     file: PathBuf,
-    /// Start: a space's Name or LongName (`Room 1`, `Room 1@Level 2`) or `x,y@Storey`.
+    /// Start: a space's GlobalId, Name or LongName (`Room 1`; `Room 1@Level 2` on that storey;
+    /// a name several spaces have is refused with the list of them), a point `x,y@Storey`
+    /// (metres), or `outside` (`outside@Storey`): in front of the best open entrance.
     #[arg(long)]
     from: String,
     /// Goal, in the same forms.
@@ -101,10 +104,12 @@ pub struct AuditArgs {
     /// Where to write the HTML report; audit.json and one SVG per profile and storey go beside it.
     #[arg(short, long)]
     output: PathBuf,
-    /// Measure reachability from this space instead of from the entrances (exterior doors).
+    /// Measure reachability from this space (GlobalId, Name or LongName, `@Storey` optional)
+    /// instead of from the entrances (exterior doors); `outside` is the entrances.
     #[arg(long)]
     start: Option<String>,
-    /// Exit with code 1 unless these spaces are reachable for every profile.
+    /// Exit with code 1 unless these spaces (named as for --start) are reachable for every
+    /// profile; an unknown or ambiguous name exits 2.
     #[arg(long, num_args = 1..)]
     require_reachable: Vec<String>,
     /// Print the audit as JSON.
@@ -177,25 +182,58 @@ pub fn route(args: &RouteArgs) -> anyhow::Result<ExitCode> {
             if args.json {
                 outln!("{}", serde_json::to_string_pretty(&r)?);
             } else {
-                outln!(
-                    "{} -> {} for {}: {:.2} m, {:.1} s",
-                    r.from,
-                    r.to,
-                    r.profile,
-                    r.length_m,
-                    r.time_s
-                );
-                for d in &r.doors {
-                    outln!("  through {}", d.name.as_deref().unwrap_or(&d.id));
+                for line in route_text(&r) {
+                    outln!("{line}");
                 }
             }
             Ok(ExitCode::SUCCESS)
         }
-        Err(e) => {
+        // The answer is no (exit 1); a place that does not exist or is ambiguous is bad input (2).
+        Err(e @ (NavError::Unreachable(_) | NavError::NoRoom(_))) => {
             errln!("error: {e}");
             Ok(ExitCode::from(1))
         }
+        Err(e) => Err(e.into()),
     }
+}
+
+/// The route as text: length and time (the same as the JSON's), then per storey its length
+/// and time and every door and doorway passed, and between storeys the stair, ramp or lift
+/// taken with its time.
+pub fn route_text(r: &Route) -> Vec<String> {
+    let mut out = vec![format!(
+        "{} -> {} for {}: {:.2} m, {:.1} s",
+        r.from, r.to, r.profile, r.length_m, r.time_s
+    )];
+    for (k, leg) in r.legs.iter().enumerate() {
+        out.push(format!(
+            "  on {}: {:.2} m, {:.1} s",
+            leg.floor_name,
+            leg.length_m,
+            leg.travel_time_s + leg.turn_time_s
+        ));
+        for d in &leg.doors {
+            out.push(format!(
+                "    through {} {} ({}, {:.2} m)",
+                if d.doorless { "doorway" } else { "door" },
+                d.name.as_deref().unwrap_or(&d.id),
+                d.status.label(),
+                d.clear_width_m
+            ));
+        }
+        if let Some(c) = r.connections.get(k) {
+            out.push(format!(
+                "  {} {} from {} to {}: {:.1} s ({})",
+                c.kind,
+                c.name.as_deref().unwrap_or(&c.id),
+                c.from_floor,
+                c.to_floor,
+                c.time_s,
+                c.status.label()
+            ));
+        }
+    }
+    out
 }
 
 /// Runs `poinav audit`.
@@ -212,6 +250,17 @@ pub fn audit(args: &AuditArgs) -> anyhow::Result<ExitCode> {
     // Statuses come from each profile's own width rule; the floors carry the first profile's roles.
     let (building, warnings) = building(&args.file, &profiles[0])?;
     print_warnings(&warnings);
+    if let Some(dir) = args.output.parent().filter(|d| d.is_file()) {
+        anyhow::bail!(
+            "cannot write {}: {} is a file, not a folder",
+            args.output.display(),
+            dir.display()
+        );
+    }
+    // Unknown or ambiguous spaces are bad input: refused before anything is written.
+    for want in &args.require_reachable {
+        building.select_space(want)?;
+    }
     let mut report = poinav_nav::audit(
         &building,
         &profiles,
@@ -243,9 +292,12 @@ pub fn audit(args: &AuditArgs) -> anyhow::Result<ExitCode> {
         for p in &report.profiles {
             let [full, restricted, blocked, pending] = p.door_counts();
             let (reachable, unreachable) = p.space_counts();
+            let doorways = p.doors.iter().filter(|d| d.doorless).count();
             outln!(
-                "{}: doors {full} full, {restricted} restricted, {blocked} blocked, {pending} pending; spaces {reachable} reachable, {unreachable} not",
-                p.profile
+                "{}: {} door passages ({} doors, {doorways} doorways): {full} full, {restricted} restricted, {blocked} blocked, {pending} pending; spaces {reachable} reachable, {unreachable} not",
+                p.profile,
+                p.doors.len(),
+                p.doors.len() - doorways,
             );
             for t in &p.transitions {
                 if t.status == poinav_poi::AccessibilityStatus::PendingValidation {
@@ -265,7 +317,7 @@ pub fn audit(args: &AuditArgs) -> anyhow::Result<ExitCode> {
             dir.display()
         );
     }
-    let failures = report.unreachable_required(&args.require_reachable);
+    let failures = report.unreachable_required(&building, &args.require_reachable)?;
     for f in &failures {
         errln!("error: {f}");
     }

@@ -6,7 +6,7 @@ mod common;
 
 use std::collections::HashMap;
 use std::ffi::OsStr;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use serde_json::Value;
 
@@ -150,10 +150,22 @@ fn check_file(file: &Path, dir: &Path, prefix: &str) -> Vec<String> {
         summary["elements"].as_u64().unwrap(),
         "{name}: CSV rows"
     );
-    let check = common::ifcos(
-        "enrich_check.py",
-        &[file.as_os_str(), out.as_os_str(), OsStr::new(prefix)],
-    );
+    // Nothing added (a model without elements to classify, the railway): the data section is
+    // the original's byte for byte, so IfcOpenShell's validation (the slowest part of this test,
+    // 90 s on the 19 MB railway) could only repeat the original's findings.
+    let mut args = vec![file.as_os_str(), out.as_os_str(), OsStr::new(prefix)];
+    if summary["instances_added"].as_u64() == Some(0) {
+        let data = |b: &[u8]| {
+            let at = b.windows(5).position(|w| w == b"DATA;").unwrap();
+            b[at..].to_vec()
+        };
+        assert!(
+            data(&before) == data(&std::fs::read(&out).unwrap()),
+            "{name}: nothing added, yet the data section changed"
+        );
+        args.push(OsStr::new("--no-validate"));
+    }
+    let check = common::ifcos("enrich_check.py", &args);
     let ifc2x3 = original.schema() == poinav_ifc::Schema::Ifc2x3;
     let psets = check["psets"].as_object().unwrap();
     if psets.len() != rows.len() {
@@ -188,21 +200,23 @@ fn check_file(file: &Path, dir: &Path, prefix: &str) -> Vec<String> {
 #[test]
 fn enrichment_round_trips_through_ifcopenshell_on_every_corpus_file() {
     let dir = tempfile::tempdir().unwrap();
-    let files = common::corpus();
+    // Two workers take the largest file left first (the IfcOpenShell checks of the two
+    // biggest files take most of the time; halves in file order left one worker with both).
+    let mut files = common::corpus();
+    files.sort_by_key(|f| std::fs::metadata(f).map(|m| m.len()).unwrap_or(0));
+    let queue = std::sync::Mutex::new(files);
     let problems: Vec<String> = std::thread::scope(|s| {
-        let chunks: Vec<Vec<PathBuf>> = files
-            .chunks(files.len().div_ceil(2))
-            .map(<[PathBuf]>::to_vec)
-            .collect();
-        let handles: Vec<_> = chunks
-            .into_iter()
-            .map(|chunk| {
-                let dir = dir.path().to_path_buf();
-                s.spawn(move || {
-                    chunk
-                        .iter()
-                        .flat_map(|f| check_file(f, &dir, "Pset_"))
-                        .collect::<Vec<_>>()
+        let handles: Vec<_> = (0..2)
+            .map(|_| {
+                s.spawn(|| {
+                    let mut found = Vec::new();
+                    while let Some(f) = {
+                        let next = queue.lock().unwrap().pop();
+                        next
+                    } {
+                        found.extend(check_file(&f, dir.path(), "Pset_"));
+                    }
+                    found
                 })
             })
             .collect();
