@@ -55,13 +55,17 @@ pub fn run_scenario(
     let converter = poinav_sim::ifc_floor::converter();
     let mut runs = Vec::new();
     for variant in names {
+        crate::progress::stage("preparing");
         let building = poinav_sim::prepare(scenario, variant.as_deref(), Some(&converter))?;
+        crate::progress::stage("simulation");
         let outcome = poinav_sim::run(scenario, variant.as_deref(), &building.floor)?;
+        crate::progress::stage("writing");
         let dir = match &variant {
             Some(v) => out.join(v),
             None => out.to_path_buf(),
         };
         poinav_sim::write_outputs(&dir, &outcome, &building.floor)?;
+        crate::progress::end();
         runs.push(VariantRun {
             variant,
             dir,
