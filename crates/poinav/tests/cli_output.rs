@@ -157,3 +157,29 @@ fn timings_list_every_stage() {
         "{err}"
     );
 }
+
+#[test]
+fn office_a_nav2_maps_cover_each_storey_and_skip_the_roof() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = corpus("office-a.ifc");
+    let nav2 = out(&dir, "nav2");
+    let (code, stdout, err) = run(&["-q", "export", "nav2", &file, "-o", &nav2]);
+    assert_eq!((code, err.as_str()), (0, ""), "{stdout}");
+    // The roof storey holds only its parapet walls: no folder, one line saying why.
+    assert!(
+        stdout.ends_with("  skipped storey Roof: no spaces or doors (10 walls)\n"),
+        "{stdout}"
+    );
+    assert!(!dir.path().join("nav2/02-roof").exists());
+    assert!(stdout.contains(": 2 storeys,"), "{stdout}");
+    // Each map is its storey's own extent (walls, spaces, doors) plus the 1 m entrance aprons
+    // and the 0.5 m border, at 0.05 m.
+    assert!(
+        stdout.contains("  00-level-1/ (Level 1): map 1071 x 777 cells, origin (-2.00, -37.85)"),
+        "{stdout}"
+    );
+    assert!(
+        stdout.contains("  01-level-2/ (Level 2): map 1031 x 757 cells, origin (-1.00, -36.85)"),
+        "{stdout}"
+    );
+}
