@@ -86,13 +86,27 @@ pub fn mesh_model(model: &Model) -> ModelMeshes {
 /// [`mesh_model`] with another time limit per product. Only pathological products reach a
 /// limit, and only those depend on the machine's speed.
 pub fn mesh_model_within(model: &Model, limit: Duration) -> ModelMeshes {
+    mesh_model_with_progress(model, limit, &crate::progress::none)
+}
+
+/// [`mesh_model_within`], reporting each product meshed to `progress`.
+pub fn mesh_model_with_progress(
+    model: &Model,
+    limit: Duration,
+    progress: crate::progress::Progress<'_>,
+) -> ModelMeshes {
     let products = meshed_products(model);
+    let ticker = crate::progress::Ticker::new(products.len(), progress);
     let results: Vec<(Entity<'_>, Result<ElementMesh, GeomError>)> = products
         .par_iter()
         .with_min_len(4)
         .map_init(
             || PlacementCache::new(model),
-            |cache, &p| (p, mesh_product_within(cache, p, limit)),
+            |cache, &p| {
+                let r = mesh_product_within(cache, p, limit);
+                ticker.tick();
+                (p, r)
+            },
         )
         .collect();
     let mut out = ModelMeshes {

@@ -210,6 +210,16 @@ pub fn floor_plans_with_meshes(
     meshes: &ModelMeshes,
     options: &PlanOptions,
 ) -> Vec<FloorPlan> {
+    floor_plans_with_progress(model, meshes, options, &crate::progress::none)
+}
+
+/// [`floor_plans_with_meshes`], reporting each product drawn to `progress`.
+pub fn floor_plans_with_progress(
+    model: &Model,
+    meshes: &ModelMeshes,
+    options: &PlanOptions,
+    progress: crate::progress::Progress<'_>,
+) -> Vec<FloorPlan> {
     let mut cache = PlacementCache::new(model);
     let metres = cache.metres_per_unit();
     let storeys = spatial::spatial_structure(model, &poinav_ifc::units::length_unit(model)).storeys;
@@ -269,6 +279,7 @@ pub fn floor_plans_with_meshes(
             }
         }
     }
+    let ticker = crate::progress::Ticker::new(members.iter().map(Vec::len).sum(), progress);
     levels
         .iter()
         .zip(members)
@@ -282,7 +293,11 @@ pub fn floor_plans_with_meshes(
                 .with_min_len(4)
                 .map_init(
                     || PlacementCache::new(model),
-                    |cache, &p| draw(cache, p, band, &by_id, &failures),
+                    |cache, &p| {
+                        let d = draw(cache, p, band, &by_id, &failures);
+                        ticker.tick();
+                        d
+                    },
                 )
                 .collect();
             let mut plan = FloorPlan {

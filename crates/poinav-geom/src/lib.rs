@@ -55,6 +55,7 @@ pub mod placement;
 pub mod plan_kind;
 pub mod polygon;
 pub mod profile;
+pub mod progress;
 pub mod region;
 pub mod representation;
 pub mod representation_mesh;
@@ -66,12 +67,13 @@ mod unit_assignment;
 pub use door::{door_geometry, DoorGeometry};
 pub use door_passage::{door_passage, DoorPassage};
 pub use element_mesh::{
-    mesh_model, mesh_model_within, mesh_product, mesh_product_within, without_representation,
-    ModelMeshes, PRODUCT_TIME_LIMIT,
+    mesh_model, mesh_model_with_progress, mesh_model_within, mesh_product, mesh_product_within,
+    without_representation, ModelMeshes, PRODUCT_TIME_LIMIT,
 };
 pub use error::GeomError;
 pub use floor_plan::{
-    floor_plans, floor_plans_with_meshes, FloorPlan, PlanItem, PlanOptions, PlanProblem, PlanSource,
+    floor_plans, floor_plans_with_meshes, floor_plans_with_progress, FloorPlan, PlanItem,
+    PlanOptions, PlanProblem, PlanSource,
 };
 pub use footprint::{footprint_of, Footprint, FootprintMethod, ProductFootprint};
 pub use mesh::{ElementMesh, Mesh};

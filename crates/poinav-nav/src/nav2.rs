@@ -21,6 +21,12 @@
 //!
 //! and `README.md` (how to load it) and `topology.json` (the building's graph for the profile)
 //! at the top. Every file is written atomically; the same input gives the same bytes.
+//!
+//! Only where there is something to navigate: each storey's maps cover its own extent (its
+//! spaces, doors and walls, [`crate::extent`]) plus the entrance aprons and
+//! [`Nav2Options::crop_margin_m`], not whatever else the storey holds (a site, terrain, a
+//! roof's overhang); a storey without spaces or doors (a roof, an empty level) gets no folder
+//! and is listed in [`BundleSummary::skipped`] with why.
 
 use std::collections::BTreeSet;
 use std::fmt::Write as _;
@@ -54,6 +60,9 @@ pub struct Nav2Options {
     /// value): with Nav2's own default 0.25, the unknown grey 205 (p = 50 / 255 = 0.196) loads
     /// as free, so the outside of the building would become free space.
     pub free_thresh: f64,
+    /// How far beyond a storey's own extent (spaces, doors, walls) and its entrance aprons
+    /// obstacles are kept in its maps, metres (default 1.0).
+    pub crop_margin_m: f64,
 }
 
 impl Default for Nav2Options {
@@ -63,6 +72,7 @@ impl Default for Nav2Options {
             frame: "map".into(),
             neighbours: 2,
             free_thresh: 0.196,
+            crop_margin_m: 1.0,
         }
     }
 }
@@ -90,13 +100,24 @@ pub struct StoreyBundle {
     pub graph_edges: usize,
 }
 
+/// A storey with nothing to navigate: no folder written.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SkippedStorey {
+    /// Storey name.
+    pub floor: String,
+    /// Why ([`crate::extent::nothing_to_navigate`]).
+    pub reason: String,
+}
+
 /// What was written.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct BundleSummary {
     /// Profile name.
     pub profile: String,
-    /// Per storey.
+    /// Per storey written.
     pub storeys: Vec<StoreyBundle>,
+    /// Storeys left out, with why.
+    pub skipped: Vec<SkippedStorey>,
     /// Every file written.
     pub files: Vec<PathBuf>,
 }
@@ -146,22 +167,81 @@ fn write(files: &mut Vec<PathBuf>, path: PathBuf, bytes: &[u8]) -> Result<(), Na
     Ok(())
 }
 
-/// Writes the bundle of `building` for `profile` into `dir` (created if missing).
+/// Writes the bundle of `building` for `profile` into `dir` (created if missing): each storey
+/// cropped to its own extent ([`cropped_building`]), storeys with nothing to navigate skipped.
 pub fn write_bundle(
     building: &Building,
     profile: &RobotProfile,
     options: &Nav2Options,
     dir: &Path,
 ) -> Result<BundleSummary, NavError> {
-    let nav = Navigator::new(building, profile, &options.nav)?;
-    write_navigator_bundle(&nav, options, dir)
+    write_bundle_with_progress(building, profile, options, dir, &crate::progress::none)
 }
 
-/// Writes the bundle of a prepared building.
+/// [`write_bundle`], telling `progress` about each storey rasterised and written.
+pub fn write_bundle_with_progress(
+    building: &Building,
+    profile: &RobotProfile,
+    options: &Nav2Options,
+    dir: &Path,
+    progress: crate::progress::Progress<'_>,
+) -> Result<BundleSummary, NavError> {
+    let cropped = cropped_building(building, options);
+    let nav = Navigator::with_progress(&cropped, profile, &options.nav, progress)?;
+    // Why a storey is skipped is told from what it held before cropping.
+    let skip = skip_reasons(building);
+    write_storeys(&nav, options, dir, progress, &skip)
+}
+
+/// Per storey, why it has nothing to navigate ([`crate::extent::nothing_to_navigate`]).
+fn skip_reasons(building: &Building) -> Vec<Option<String>> {
+    building
+        .floors
+        .iter()
+        .map(crate::extent::nothing_to_navigate)
+        .collect()
+}
+
+/// `building` with each storey cropped to its own extent plus the entrance apron and
+/// [`Nav2Options::crop_margin_m`] ([`crate::extent::cropped`]); storeys with nothing to
+/// navigate keep no obstacles, so their grids cost nothing.
+pub fn cropped_building(building: &Building, options: &Nav2Options) -> Building {
+    let margin = options.nav.grid.entrance_apron_m.max(0.0) + options.crop_margin_m.max(0.0);
+    Building {
+        floors: building
+            .floors
+            .iter()
+            .map(|f| crate::extent::cropped(f, margin))
+            .collect(),
+        connections: building.connections.clone(),
+    }
+}
+
+/// Writes the bundle of a prepared building (storeys with nothing to navigate skipped).
 pub fn write_navigator_bundle(
     nav: &Navigator<'_>,
     options: &Nav2Options,
     dir: &Path,
+) -> Result<BundleSummary, NavError> {
+    write_navigator_bundle_with_progress(nav, options, dir, &crate::progress::none)
+}
+
+/// [`write_navigator_bundle`], telling `progress` about each storey written.
+pub fn write_navigator_bundle_with_progress(
+    nav: &Navigator<'_>,
+    options: &Nav2Options,
+    dir: &Path,
+    progress: crate::progress::Progress<'_>,
+) -> Result<BundleSummary, NavError> {
+    write_storeys(nav, options, dir, progress, &skip_reasons(nav.building))
+}
+
+fn write_storeys(
+    nav: &Navigator<'_>,
+    options: &Nav2Options,
+    dir: &Path,
+    progress: crate::progress::Progress<'_>,
+    skip: &[Option<String>],
 ) -> Result<BundleSummary, NavError> {
     let mkdir = |d: &Path| {
         std::fs::create_dir_all(d).map_err(|source| NavError::Write {
@@ -172,7 +252,17 @@ pub fn write_navigator_bundle(
     mkdir(dir)?;
     let mut files = Vec::new();
     let mut storeys = Vec::new();
+    let mut skipped = Vec::new();
+    let n = nav.building.floors.len();
     for (fi, floor) in nav.building.floors.iter().enumerate() {
+        progress(crate::progress::Phase::Writing, fi, n);
+        if let Some(reason) = skip.get(fi).cloned().flatten() {
+            skipped.push(SkippedStorey {
+                floor: floor.name.clone(),
+                reason,
+            });
+            continue;
+        }
         let folder = format!("{fi:02}-{}", slug(&floor.name));
         let sub = dir.join(&folder);
         mkdir(&sub)?;
@@ -252,17 +342,19 @@ pub fn write_navigator_bundle(
             graph_edges: n_edges,
         });
     }
+    progress(crate::progress::Phase::Writing, n, n);
     let topo = nav.topology.to_json(nav.building, &nav.profile);
     let text = serde_json::to_string_pretty(&topo).unwrap_or_default() + "\n";
     write(&mut files, dir.join("topology.json"), text.as_bytes())?;
     write(
         &mut files,
         dir.join("README.md"),
-        readme(nav, options, &storeys).as_bytes(),
+        readme(nav, options, &storeys, &skipped).as_bytes(),
     )?;
     Ok(BundleSummary {
         profile: nav.profile.name.clone(),
         storeys,
+        skipped,
         files,
     })
 }
@@ -619,7 +711,12 @@ fn zones_of(nav: &Navigator<'_>, n: usize, fi: usize) -> BTreeSet<usize> {
         .collect()
 }
 
-fn readme(nav: &Navigator<'_>, options: &Nav2Options, storeys: &[StoreyBundle]) -> String {
+fn readme(
+    nav: &Navigator<'_>,
+    options: &Nav2Options,
+    storeys: &[StoreyBundle],
+    skipped: &[SkippedStorey],
+) -> String {
     let p = &nav.profile;
     let mut s = String::new();
     let _ = writeln!(s, "# Nav2 bundle for robot profile `{}`\n", p.name);
@@ -645,6 +742,12 @@ fn readme(nav: &Navigator<'_>, options: &Nav2Options, storeys: &[StoreyBundle]) 
             st.graph_nodes,
             st.graph_edges
         );
+    }
+    if !skipped.is_empty() {
+        s.push_str("\nStoreys with nothing to navigate have no folder:\n\n");
+        for k in skipped {
+            let _ = writeln!(s, "- {}: {}", k.floor, k.reason);
+        }
     }
     let res = nav
         .floors

@@ -80,10 +80,24 @@ impl<'a> Navigator<'a> {
         profile: &RobotProfile,
         options: &NavOptions,
     ) -> Result<Navigator<'a>, NavError> {
+        Navigator::with_progress(building, profile, options, &crate::progress::none)
+    }
+
+    /// [`Navigator::new`], telling `progress` about each storey rasterised and the graph.
+    pub fn with_progress(
+        building: &'a Building,
+        profile: &RobotProfile,
+        options: &NavOptions,
+        progress: crate::progress::Progress<'_>,
+    ) -> Result<Navigator<'a>, NavError> {
+        use crate::progress::Phase;
         options.speeds.validate().map_err(NavError::Invalid)?;
+        progress(Phase::Graph, 0, 1);
         let mut topology = Topology::build(building);
         let status = topology.statuses(building, profile);
         let mut floors = Vec::with_capacity(building.floors.len());
+        let n = building.floors.len();
+        progress(Phase::Rasterising, 0, n);
         for floor in &building.floors {
             let grid = NavGrid::build(floor, profile, &options.grid, &options.inflation)?;
             let zone_speed = floor
@@ -102,7 +116,9 @@ impl<'a> Navigator<'a> {
                 zone_speed,
                 door_speed,
             });
+            progress(Phase::Rasterising, floors.len(), n);
         }
+        progress(Phase::Graph, 0, 1);
         // A door whose side without a zone is walled in is no entrance (the grid found it).
         for d in &mut topology.doors {
             d.walled_in = floors[d.floor].grid.occupancy.doors[d.door].walled_in;

@@ -456,3 +456,70 @@ fn office_route_graph() {
     assert!(reach.contains(&node_named(&graph, "Entrance East").unwrap()));
     assert!(!reach.contains(&node_named(&graph, "Office 50").unwrap()));
 }
+
+#[test]
+fn a_site_is_cropped_away_and_a_storey_with_nothing_to_navigate_is_skipped() {
+    let profile = RobotProfile::paper();
+    let ground = demo_floor(&poinav_author::DemoBuilding::default());
+    let plain = tempfile::tempdir().unwrap();
+    let alone = write_bundle(
+        &Building::single(ground.clone()),
+        &profile,
+        &Nav2Options::default(),
+        plain.path(),
+    )
+    .unwrap();
+    let (w, h) = (alone.storeys[0].width, alone.storeys[0].height);
+
+    // The same storey on a 200 x 120 m site slab, with a roof storey above holding only the
+    // roof: the ground map is no bigger than the building alone plus the 1 m apron and margin.
+    let site = |x0: f64, y0: f64, x1: f64, y1: f64, class: &str| poinav_nav::FloorObstacle {
+        id: class.into(),
+        class: class.into(),
+        kind: poinav_nav::ObstacleKind::Structure,
+        rings: vec![vec![
+            DVec2::new(x0, y0),
+            DVec2::new(x1, y0),
+            DVec2::new(x1, y1),
+            DVec2::new(x0, y1),
+        ]],
+        roles: vec![],
+    };
+    let mut on_site = ground.clone();
+    on_site
+        .obstacles
+        .push(site(-100.0, -60.0, 100.0, 60.0, "IfcSite"));
+    let roof = poinav_nav::Floor {
+        name: "Roof".into(),
+        elevation_m: 3.0,
+        obstacles: vec![site(-1.0, -1.0, 20.0, 12.0, "IfcRoof")],
+        ..Default::default()
+    };
+    let building = Building {
+        floors: vec![on_site, roof],
+        connections: vec![],
+    };
+    let dir = tempfile::tempdir().unwrap();
+    let summary = write_bundle(&building, &profile, &Nav2Options::default(), dir.path()).unwrap();
+    assert_eq!(summary.storeys.len(), 1);
+    let (cw, ch) = (summary.storeys[0].width, summary.storeys[0].height);
+    // 2 m more on each side at most (apron 1 m + margin 1 m), 0.05 m cells: 80 cells.
+    assert!(cw <= w + 80 && ch <= h + 80, "{cw} x {ch} vs {w} x {h}");
+    assert!(
+        cw < 4000 / 2 && ch < 2400 / 2,
+        "not the whole site: {cw} x {ch}"
+    );
+    assert_eq!(
+        summary.skipped,
+        [poinav_nav::nav2::SkippedStorey {
+            floor: "Roof".into(),
+            reason: "no spaces or doors (1 other element)".into()
+        }]
+    );
+    assert!(!dir.path().join("01-roof").exists());
+    let readme = std::fs::read_to_string(dir.path().join("README.md")).unwrap();
+    assert!(
+        readme.contains("- Roof: no spaces or doors (1 other element)"),
+        "{readme}"
+    );
+}

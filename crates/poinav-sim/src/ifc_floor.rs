@@ -6,7 +6,8 @@
 use std::collections::{BTreeMap, HashMap};
 
 use poinav_geom::{
-    floor_plans, floor_plans_with_meshes, mesh_model, FloorPlan, PlanItemKind, PlanOptions,
+    floor_plans, floor_plans_with_meshes, mesh_model, FloorPlan, ModelMeshes, PlanItemKind,
+    PlanOptions,
 };
 use poinav_ifc::Model;
 use poinav_nav::{Floor, FloorDoor, FloorObstacle, FloorZone, ObstacleKind};
@@ -228,6 +229,17 @@ pub fn building_and_dropped(
 ) -> (poinav_nav::Building, Vec<Dropped>) {
     let meshes = mesh_model(model);
     let plans = floor_plans_with_meshes(model, &meshes, &PlanOptions::default());
+    building_from_plans(model, classification, &meshes, &plans)
+}
+
+/// [`building_and_dropped`] from the model's meshes and storey plans (default options), for
+/// callers that time or report those stages themselves.
+pub fn building_from_plans(
+    model: &Model,
+    classification: &Classification,
+    meshes: &ModelMeshes,
+    plans: &[FloorPlan],
+) -> (poinav_nav::Building, Vec<Dropped>) {
     let boundaries = door_space_boundaries(model);
     let floors: Vec<Floor> = plans
         .iter()
@@ -238,7 +250,7 @@ pub fn building_and_dropped(
         })
         .collect();
     let clearance = (classification.profile.width_m / 2.0).max(0.25);
-    let vertical = vertical_connections(model, &meshes, &floors, clearance);
+    let vertical = vertical_connections(model, meshes, &floors, clearance);
     (
         poinav_nav::Building {
             floors,

@@ -94,8 +94,11 @@ pub fn door_width(args: &DoorWidthArgs) -> anyhow::Result<ExitCode> {
         patch.profiles.len(),
         args.output.display()
     );
-    for w in &patch.warnings {
-        errln!("warning: {w}");
-    }
+    let warnings: Vec<crate::warnings::Warning> = patch
+        .warnings
+        .iter()
+        .map(|w| crate::warnings::Warning::plain(w.to_string()))
+        .collect();
+    crate::warnings::print(&warnings);
     Ok(ExitCode::SUCCESS)
 }

@@ -100,18 +100,6 @@ fn profile_summary(c: &Classification) -> ProfileSummary {
     }
 }
 
-fn progress(enabled: bool) -> indicatif::ProgressBar {
-    if !enabled {
-        return indicatif::ProgressBar::hidden();
-    }
-    let bar = indicatif::ProgressBar::new(4);
-    bar.set_style(
-        indicatif::ProgressStyle::with_template("{spinner} [{pos}/{len}] {msg}")
-            .expect("valid template"),
-    );
-    bar
-}
-
 /// Runs `poinav enrich`.
 pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     let rules = crate::rules(args.rules.as_deref())?;
@@ -145,19 +133,15 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
             out.join("model.poi.ifc").display()
         );
     }
-    let size = std::fs::metadata(&args.input).map(|m| m.len()).unwrap_or(0);
-    let bar = progress(size > 5_000_000 && !args.json);
-    bar.set_message(format!("reading {}", args.input.display()));
+    crate::progress::stage("reading");
     let model = Model::open(&args.input)?;
-    bar.inc(1);
-    bar.set_message("classifying");
+    crate::progress::stage("classifying");
     let classifications: Vec<Classification> = profiles
         .iter()
         .map(|p| classify(&model, &rules, p))
         .collect();
     let primary = &classifications[0];
-    bar.inc(1);
-    bar.set_message("writing property sets");
+    crate::progress::stage("writing");
     let timestamp = poinav_poi::iso8601_utc(poinav_poi::now_or_source_date_epoch());
     let opts = WriteOptions {
         prefix: args.pset_prefix.clone(),
@@ -166,7 +150,6 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     let editor = poinav_poi::write_enrichment(&model, primary, &opts)?;
     // The error names the file and the cause.
     editor.write(&args.output)?;
-    bar.inc(1);
     let metres = poinav_ifc::units::length_unit(&model).metres_per_unit;
     if let Some(csv) = &args.csv {
         poinav_export::semantic_csv::write_csv(csv, primary, metres, &timestamp)?;
@@ -174,7 +157,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     if let Some(ids) = &args.ids {
         poinav_export::ids::write_ids(ids, &model, primary, &opts)?;
     }
-    bar.finish_and_clear();
+    crate::progress::end();
 
     let mut summary = Summary {
         input: args.input.display().to_string(),

@@ -8,6 +8,8 @@ use poinav_export::SceneInput;
 use poinav_ifc::{spatial, units, Model};
 use poinav_poi::classify;
 
+use crate::warnings::Warning;
+
 /// Export formats.
 #[derive(Debug, clap::Subcommand)]
 pub enum Export {
@@ -46,10 +48,25 @@ pub fn run(export: &Export) -> anyhow::Result<ExitCode> {
         Export::Fbx(a) => (a, "fbx"),
         Export::Nav2(a) => return crate::navigate::nav2(a),
     };
+    crate::progress::stage("reading");
     let model = Model::open(&args.file)?;
-    let meshes = poinav_geom::mesh_model(&model);
+    crate::progress::stage("meshing");
+    let meshes = poinav_geom::mesh_model_with_progress(
+        &model,
+        poinav_geom::PRODUCT_TIME_LIMIT,
+        &crate::progress::tick,
+    );
+    crate::progress::end();
     let unit = units::length_unit(&model);
     let structure = spatial::spatial_structure(&model, &unit);
+    let problems = problems(&model, &meshes);
+    crate::warnings::print(&problems);
+    crate::ensure_geometry(
+        &args.file,
+        meshes.elements.len() + meshes.spaces.len(),
+        meshes.failures.len(),
+    )?;
+    crate::progress::stage("classifying");
     let classification = if args.no_poi {
         None
     } else {
@@ -62,10 +79,12 @@ pub fn run(export: &Export) -> anyhow::Result<ExitCode> {
         elements: &meshes.elements,
         poi: classification.as_ref(),
     };
+    crate::progress::stage("writing");
     match format {
         "glb" => poinav_export::glb::write_glb(&args.output, &scene),
         _ => poinav_export::fbx::write_fbx(&args.output, &scene),
     }?; // The error names the file and the cause.
+    crate::progress::end();
     let triangles: usize = meshes.elements.iter().map(|e| e.mesh.triangles.len()).sum();
     outln!(
         "wrote {}: {} elements ({} triangles) on {} storeys; {} elements without geometry ({} failed, {} without a representation)",
@@ -77,32 +96,33 @@ pub fn run(export: &Export) -> anyhow::Result<ExitCode> {
         meshes.failures.len(),
         meshes.without_geometry.len(),
     );
+    Ok(ExitCode::SUCCESS)
+}
+
+/// The elements left out of the export, as warnings: those whose mesh failed and those
+/// without a representation.
+fn problems(model: &Model, meshes: &poinav_geom::ModelMeshes) -> Vec<Warning> {
+    let class = |id| model.entity(id).map(|e| e.type_name().to_string());
+    let failed = meshes
+        .failures
+        .iter()
+        .map(|(id, e)| Warning::of(id, class(*id), e.to_string()));
     let absent = meshes.without_geometry.iter().map(|&id| {
-        let e = model.entity(id);
-        let class = e.map(|e| e.type_name().to_string()).unwrap_or_default();
-        let name = e
+        let name = model
+            .entity(id)
             .and_then(|e| e.name())
             .map(|n| format!(" '{n}'"))
             .unwrap_or_default();
-        (
+        let class = class(id);
+        Warning::of(
             id,
-            format!("{class}{name} has no Representation: not in the export"),
+            class.clone(),
+            format!(
+                "{}{name} has no Representation: not in the export",
+                class.unwrap_or_default()
+            ),
         )
+        .grouped_by("has no Representation: not in the export")
     });
-    let problems: Vec<(poinav_ifc::EntityId, String)> = meshes
-        .failures
-        .iter()
-        .map(|(id, e)| (*id, e.to_string()))
-        .chain(absent)
-        .collect();
-    for (id, message) in problems.iter().take(20) {
-        errln!("warning: {}", crate::with_id(id, message));
-    }
-    if problems.len() > 20 {
-        errln!(
-            "warning: ... and {} more elements without geometry",
-            problems.len() - 20
-        );
-    }
-    Ok(ExitCode::SUCCESS)
+    failed.chain(absent).collect()
 }

@@ -24,8 +24,10 @@ mod export;
 mod inspect;
 mod navigate;
 mod plan;
+mod progress;
 mod serve;
 mod simulate;
+mod warnings;
 
 use std::process::ExitCode;
 
@@ -35,8 +37,48 @@ use clap::{Parser, Subcommand};
 #[derive(Debug, Parser)]
 #[command(name = "poinav", version, about, after_help = EXIT_CODES)]
 struct Cli {
+    #[command(flatten)]
+    flags: Flags,
     #[command(subcommand)]
     command: Command,
+}
+
+/// Options every command takes: what is printed on standard error besides errors.
+#[derive(Debug, Clone, Copy, Default, clap::Args)]
+pub struct Flags {
+    /// Print nothing on standard error but errors: no progress bars, no warnings.
+    #[arg(short, long, global = true)]
+    pub quiet: bool,
+    /// List every warning, instead of one line per kind of warning with a count.
+    #[arg(short, long, global = true, conflicts_with = "quiet")]
+    pub verbose: bool,
+    /// Print the wall time of each stage (reading, meshing, sectioning, rasterising, graph,
+    /// simulation, writing) on standard error at the end.
+    #[arg(long, global = true)]
+    pub timings: bool,
+    /// Write outputs even when the model gave no geometry at all (else: exit 2).
+    #[arg(long, global = true)]
+    pub allow_empty: bool,
+}
+
+static FLAGS: std::sync::OnceLock<Flags> = std::sync::OnceLock::new();
+
+/// The global flags of this run.
+pub fn flags() -> Flags {
+    FLAGS.get().copied().unwrap_or_default()
+}
+
+/// Refuses a model that gave no geometry at all (nothing meshed), unless `--allow-empty`:
+/// its outputs would be empty drawings, maps and scenes that look like an empty building.
+pub fn ensure_geometry(file: &std::path::Path, meshed: usize, failed: usize) -> anyhow::Result<()> {
+    if meshed > 0 || flags().allow_empty {
+        return Ok(());
+    }
+    anyhow::bail!(
+        "no geometry in {}: none of its elements could be meshed ({} failed); nothing to draw or navigate (--allow-empty writes the outputs anyway)",
+        file.display(),
+        warnings::thousands(failed)
+    )
 }
 
 #[derive(Debug, Subcommand)]
@@ -150,6 +192,7 @@ pub const EXIT_BAD_INPUT: u8 = 2;
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    let _ = FLAGS.set(cli.flags);
     let result = match cli.command {
         Command::Inspect(args) => inspect::run(&args),
         Command::Enrich(args) => enrich::run(&args),
@@ -163,6 +206,7 @@ fn main() -> ExitCode {
         Command::DemoBuilding(args) => author::demo_building(&args),
         Command::Patch(author::Patch::DoorWidth(args)) => author::door_width(&args),
     };
+    progress::finish();
     match result {
         Ok(code) => code,
         // The reader of our standard output stopped early: not an error of ours.

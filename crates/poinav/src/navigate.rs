@@ -12,6 +12,8 @@ use poinav_nav::{
 };
 use poinav_poi::{classify, RobotProfile, RuleSet};
 
+use crate::warnings::Warning;
+
 /// How storeys are rasterised: shared by `route`, `audit` and `export nav2`.
 #[derive(Debug, Clone, clap::Args)]
 pub struct GridArgs {
@@ -140,47 +142,92 @@ pub struct Nav2Args {
 /// The building's storeys as floors, classified for `profile`, and warnings: the stairs,
 /// ramps and lifts left out (with why) and what else limits navigation
 /// ([`Building::diagnostics`]).
-pub fn building(file: &Path, profile: &RobotProfile) -> anyhow::Result<(Building, Vec<String>)> {
+pub fn building(file: &Path, profile: &RobotProfile) -> anyhow::Result<(Building, Vec<Warning>)> {
+    let (building, warnings, _) = load(file, profile)?;
+    Ok((building, warnings))
+}
+
+/// [`building`] with its warnings printed; refuses a model that gave no geometry at all
+/// unless `--allow-empty` ([`crate::ensure_geometry`]).
+fn checked_building(
+    file: &Path,
+    profile: &RobotProfile,
+) -> anyhow::Result<(Building, Vec<Warning>)> {
+    let (building, warnings, (meshed, failed)) = load(file, profile)?;
+    crate::warnings::print(&warnings);
+    crate::ensure_geometry(file, meshed, failed)?;
+    Ok((building, warnings))
+}
+
+/// [`building`], and how many products were meshed and how many failed.
+fn load(
+    file: &Path,
+    profile: &RobotProfile,
+) -> anyhow::Result<(Building, Vec<Warning>, (usize, usize))> {
+    use crate::progress::{stage, tick};
+    stage("reading");
     let model = Model::open(file)?;
+    stage("classifying");
     let c = classify(&model, &RuleSet::defaults(), profile);
-    let (building, dropped) = poinav_sim::ifc_floor::building_and_dropped(&model, &c);
-    let mut warnings: Vec<String> = dropped
+    stage("meshing");
+    let meshes =
+        poinav_geom::mesh_model_with_progress(&model, poinav_geom::PRODUCT_TIME_LIMIT, &tick);
+    stage("sectioning");
+    let plans = poinav_geom::floor_plans_with_progress(
+        &model,
+        &meshes,
+        &poinav_geom::PlanOptions::default(),
+        &tick,
+    );
+    let (building, dropped) =
+        poinav_sim::ifc_floor::building_from_plans(&model, &c, &meshes, &plans);
+    crate::progress::end();
+    let mut warnings: Vec<Warning> = dropped
         .iter()
         .map(|d| {
             let name = match &d.name {
                 Some(n) => format!("{n} ({})", d.id),
                 None => d.id.clone(),
             };
-            format!(
-                "{} {name} is left out, it connects no storeys: {}",
-                d.kind.label(),
-                d.reason
+            Warning::of(
+                &d.id,
+                Some(d.kind.label().to_string()),
+                format!(
+                    "{} {name} is left out, it connects no storeys: {}",
+                    d.kind.label(),
+                    d.reason
+                ),
             )
+            .grouped_by(format!("left out, it connects no storeys: {}", d.reason))
         })
         .collect();
-    warnings.extend(building.diagnostics());
-    Ok((building, warnings))
+    warnings.extend(building.diagnostics().into_iter().map(Warning::plain));
+    let meshed = meshes.elements.len() + meshes.spaces.len();
+    Ok((building, warnings, (meshed, meshes.failures.len())))
 }
 
-fn print_warnings(warnings: &[String]) {
-    for w in warnings {
-        errln!("warning: {w}");
-    }
+/// Progress of rasterising, the graph and writing, as stages of the CLI's progress.
+fn nav_progress(phase: poinav_nav::Phase, done: usize, total: usize) {
+    crate::progress::phase(phase.label(), done, total);
 }
 
 /// Runs `poinav route`.
 pub fn route(args: &RouteArgs) -> anyhow::Result<ExitCode> {
     let options = args.grid.nav_options()?;
     let profile = crate::profile(args.profile.as_deref())?;
-    let (building, warnings) = building(&args.file, &profile)?;
-    print_warnings(&warnings);
-    let nav = Navigator::new(&building, &profile, &options)?;
+    let (building, warnings) = checked_building(&args.file, &profile)?;
+    let nav = Navigator::with_progress(&building, &profile, &options, &nav_progress)?;
+    crate::progress::stage("routing");
     let from: Place = args.from.parse().map_err(anyhow::Error::msg)?;
     let to: Place = args.to.parse().map_err(anyhow::Error::msg)?;
-    match nav.route(&from, &to) {
+    let route = nav.route(&from, &to);
+    crate::progress::end();
+    match route {
         Ok(r) => {
             if args.json {
-                outln!("{}", serde_json::to_string_pretty(&r)?);
+                let mut json = serde_json::to_value(&r)?;
+                json["warnings"] = crate::warnings::to_json(&warnings);
+                outln!("{}", serde_json::to_string_pretty(&json)?);
             } else {
                 for line in route_text(&r) {
                     outln!("{line}");
@@ -248,8 +295,7 @@ pub fn audit(args: &AuditArgs) -> anyhow::Result<ExitCode> {
             .collect::<Result<_, _>>()?
     };
     // Statuses come from each profile's own width rule; the floors carry the first profile's roles.
-    let (building, warnings) = building(&args.file, &profiles[0])?;
-    print_warnings(&warnings);
+    let (building, warnings) = checked_building(&args.file, &profiles[0])?;
     if let Some(dir) = args.output.parent().filter(|d| d.is_file()) {
         anyhow::bail!(
             "cannot write {}: {} is a file, not a folder",
@@ -261,6 +307,7 @@ pub fn audit(args: &AuditArgs) -> anyhow::Result<ExitCode> {
     for want in &args.require_reachable {
         building.select_space(want)?;
     }
+    crate::progress::stage("auditing");
     let mut report = poinav_nav::audit(
         &building,
         &profiles,
@@ -271,7 +318,8 @@ pub fn audit(args: &AuditArgs) -> anyhow::Result<ExitCode> {
     )?;
     // The report lists the left-out connections too (diagnostics are in it already).
     let dropped: Vec<String> = warnings
-        .into_iter()
+        .iter()
+        .map(Warning::line)
         .filter(|w| !report.warnings.contains(w))
         .collect();
     report.warnings.splice(0..0, dropped);
@@ -280,12 +328,14 @@ pub fn audit(args: &AuditArgs) -> anyhow::Result<ExitCode> {
         .parent()
         .filter(|p| !p.as_os_str().is_empty())
         .unwrap_or(Path::new("."));
+    crate::progress::stage("writing");
     let files = poinav_nav::audit::write_report(&report, &building, dir)?;
     let written = dir.join("report.html");
     if written != args.output {
         std::fs::rename(&written, &args.output)
             .with_context(|| format!("writing {}", args.output.display()))?;
     }
+    crate::progress::end();
     if args.json {
         outln!("{}", serde_json::to_string_pretty(&report.to_json())?);
     } else {
@@ -332,15 +382,23 @@ pub fn audit(args: &AuditArgs) -> anyhow::Result<ExitCode> {
 pub fn nav2(args: &Nav2Args) -> anyhow::Result<ExitCode> {
     let nav = args.grid.nav_options()?;
     let profile = crate::profile(args.profile.as_deref())?;
-    let (building, warnings) = building(&args.file, &profile)?;
-    print_warnings(&warnings);
+    let (building, warnings) = checked_building(&args.file, &profile)?;
     let options = Nav2Options {
         nav,
         ..Nav2Options::default()
     };
-    let summary = poinav_nav::write_bundle(&building, &profile, &options, &args.output)?;
+    let summary = poinav_nav::write_bundle_with_progress(
+        &building,
+        &profile,
+        &options,
+        &args.output,
+        &nav_progress,
+    )?;
+    crate::progress::end();
     if args.json {
-        outln!("{}", serde_json::to_string_pretty(&summary)?);
+        let mut json = serde_json::to_value(&summary)?;
+        json["warnings"] = crate::warnings::to_json(&warnings);
+        outln!("{}", serde_json::to_string_pretty(&json)?);
         return Ok(ExitCode::SUCCESS);
     }
     outln!(
@@ -365,6 +423,9 @@ pub fn nav2(args: &Nav2Args) -> anyhow::Result<ExitCode> {
             s.graph_nodes,
             s.graph_edges
         );
+    }
+    for k in &summary.skipped {
+        outln!("  skipped storey {}: {}", k.floor, k.reason);
     }
     Ok(ExitCode::SUCCESS)
 }

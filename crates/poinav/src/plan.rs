@@ -6,9 +6,13 @@ use std::process::ExitCode;
 
 use anyhow::Context;
 use poinav_export::plan_svg::{to_svg, SvgOptions};
-use poinav_geom::{floor_plans, PlanOptions};
+use poinav_geom::{
+    floor_plans_with_progress, mesh_model_with_progress, PlanOptions, PRODUCT_TIME_LIMIT,
+};
 use poinav_ifc::Model;
 use poinav_poi::{classify, RuleSet};
+
+use crate::warnings::Warning;
 
 /// Arguments of `poinav plan`.
 #[derive(Debug, clap::Args)]
@@ -34,16 +38,47 @@ pub struct Args {
 
 /// Runs `poinav plan`.
 pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
+    crate::progress::stage("reading");
     let model = Model::open(&args.file)?;
-    let plans = floor_plans(
+    crate::progress::stage("meshing");
+    let meshes = mesh_model_with_progress(&model, PRODUCT_TIME_LIMIT, &crate::progress::tick);
+    crate::progress::stage("sectioning");
+    let plans = floor_plans_with_progress(
         &model,
+        &meshes,
         &PlanOptions {
             band_min_m: args.band_min,
             band_max_m: args.band_max,
         },
+        &crate::progress::tick,
     );
+    crate::progress::end();
     let plan =
         poinav_sim::ifc_floor::pick(&plans, args.storey.as_deref()).map_err(anyhow::Error::msg)?;
+    let warnings: Vec<Warning> = plan
+        .problems
+        .iter()
+        .map(|p| {
+            let fallback = if p.fell_back {
+                " (drawn from its footprint)"
+            } else {
+                " (left out)"
+            };
+            Warning::of(
+                p.product,
+                Some(p.class.clone()),
+                format!("{}{fallback}", p.error),
+            )
+        })
+        .collect();
+    crate::warnings::print(&warnings);
+    let failed = meshes.failures.len();
+    crate::ensure_geometry(
+        &args.file,
+        meshes.elements.len() + meshes.spaces.len(),
+        failed,
+    )?;
+    crate::progress::stage("classifying");
     let profile = crate::profile(args.profile.as_deref())?;
     let c = classify(&model, &RuleSet::defaults(), &profile);
     let door_status: HashMap<String, String> = c
@@ -56,6 +91,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
                 .map(|a| (e.global_id.clone(), a.status.label().to_string()))
         })
         .collect();
+    crate::progress::stage("writing");
     let svg = to_svg(
         plan,
         &SvgOptions {
@@ -65,6 +101,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     );
     poinav_ifc::output::write_atomic(&args.output, svg.as_bytes())
         .with_context(|| format!("writing {}", args.output.display()))?;
+    crate::progress::end();
     let doorways = match plan.openings.len() {
         0 => String::new(),
         1 => "; 1 doorway without a door".to_string(),
@@ -78,13 +115,5 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         plan.doors.len(),
         plan.problems.len()
     );
-    for p in &plan.problems {
-        let fallback = if p.fell_back {
-            " (drawn from its footprint)"
-        } else {
-            " (left out)"
-        };
-        errln!("warning: {}{fallback}", crate::with_id(p.product, &p.error));
-    }
     Ok(ExitCode::SUCCESS)
 }

@@ -75,11 +75,13 @@ pub fn run_scenario_with(
     let converter = poinav_sim::ifc_floor::converter();
     let mut runs = Vec::new();
     for variant in names {
+        crate::progress::stage("preparing");
         let building = poinav_sim::prepare(scenario, variant.as_deref(), Some(&converter))?;
         let dir = match &variant {
             Some(v) => out.join(v),
             None => out.to_path_buf(),
         };
+        crate::progress::stage("simulation");
         let (outcome, _) = poinav_sim::run_into(
             &dir,
             scenario,
@@ -87,6 +89,7 @@ pub fn run_scenario_with(
             &building.floor,
             trace_every,
         )?;
+        crate::progress::end();
         runs.push(VariantRun {
             variant,
             dir,

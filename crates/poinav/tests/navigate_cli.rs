@@ -401,11 +401,22 @@ fn a_model_without_a_building_is_said_to_have_nothing_to_navigate() {
     let dir = tempfile::tempdir().unwrap();
     let file = common::shared().join("ifc/railway-track-ifc4x3.ifc");
     let out = dir.path().join("report.html");
+    // Nothing could be meshed: refused (exit 2) unless asked to go on.
+    let (code, _, err) = run(&[
+        OsStr::new("audit"),
+        file.as_os_str(),
+        OsStr::new("-o"),
+        out.as_os_str(),
+    ]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("error: no geometry in "), "{err}");
+    assert!(!out.exists());
     let (code, stdout, err) = run(&[
         OsStr::new("audit"),
         file.as_os_str(),
         OsStr::new("-o"),
         out.as_os_str(),
+        OsStr::new("--allow-empty"),
     ]);
     assert_eq!(code, 0, "{err}");
     assert!(
