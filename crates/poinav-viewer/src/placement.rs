@@ -1,6 +1,7 @@
 //! Where the robots start when no scenario says: two robots in the largest zone of the floor,
-//! each at the point of that zone farthest from any obstacle, at least 2.5 m apart, facing
-//! each other.
+//! each at the point of that zone farthest from any obstacle, at least 2.5 m apart, each facing
+//! the most open direction that does not point at the other robot, so the first key press
+//! drives into free space.
 
 use glam::DVec2;
 use poinav_nav::Floor;
@@ -16,6 +17,56 @@ const STEP_M: f64 = 0.1;
 const MAX_POINTS: f64 = 20_000.0;
 /// Distance kept between the two default robots, metres.
 const APART_M: f64 = 2.5;
+/// Headings tried when choosing where a robot faces.
+const HEADINGS: usize = 72;
+/// Headings within this angle of the other robot are not chosen, degrees.
+const AVOID_DEG: f64 = 60.0;
+/// Farthest a ray looks when measuring open space, metres.
+const RAY_MAX_M: f64 = 20.0;
+
+/// Distance from `p` along the unit direction `d` to the first segment, at most [`RAY_MAX_M`].
+fn ray_distance(segments: &[(DVec2, DVec2)], p: DVec2, d: DVec2) -> f64 {
+    let mut best = RAY_MAX_M;
+    for &(a, b) in segments {
+        let e = b - a;
+        let den = d.perp_dot(e);
+        if den.abs() < 1e-12 {
+            continue;
+        }
+        let w = a - p;
+        let t = w.perp_dot(e) / den;
+        let u = w.perp_dot(d) / den;
+        if t >= 0.0 && (0.0..=1.0).contains(&u) {
+            best = best.min(t);
+        }
+    }
+    best
+}
+
+/// The heading (degrees) from `p` with the most free room ahead for a body `width` wide
+/// (the shortest of three parallel rays: centre and both sides), leaving out headings within
+/// [`AVOID_DEG`] of `other`. Ties go to the lowest heading, so the choice is deterministic.
+fn open_heading(segments: &[(DVec2, DVec2)], p: DVec2, width: f64, other: DVec2) -> f64 {
+    let towards = (other - p).to_angle().to_degrees();
+    let mut best = (f64::MIN, towards + 180.0);
+    for k in 0..HEADINGS {
+        let deg = k as f64 * 360.0 / HEADINGS as f64;
+        let off = (deg - towards + 540.0).rem_euclid(360.0) - 180.0;
+        if off.abs() < AVOID_DEG {
+            continue;
+        }
+        let d = DVec2::from_angle(deg.to_radians());
+        let side = d.perp() * (width / 2.0);
+        let room = [p, p + side, p - side]
+            .iter()
+            .map(|&q| ray_distance(segments, q, d))
+            .fold(f64::MAX, f64::min);
+        if room > best.0 + 1e-9 {
+            best = (room, deg);
+        }
+    }
+    best.1
+}
 
 fn inside(ring: &[DVec2], p: DVec2) -> bool {
     let mut c = false;
@@ -122,7 +173,9 @@ pub fn default_robots(
         .find(|c| c.0 > need && c.1.distance(first) >= APART_M)
         .ok_or_else(|| fail("its largest space has no room for a second robot"))?
         .1;
-    let towards = (second - first).to_angle().to_degrees();
+    let width = profile.width_m.max(0.0);
+    let heading_first = open_heading(&segments, first, width, second);
+    let heading_second = open_heading(&segments, second, width, first);
     let robot = |name: &str, start: DVec2, heading_deg: f64, scheme| RobotSetup {
         name: name.into(),
         global_id: None,
@@ -139,7 +192,44 @@ pub fn default_robots(
         brake_force_n: 100.0,
     };
     Ok(vec![
-        robot("Robot1", first, towards, KeyScheme::Arrows),
-        robot("Robot2", second, towards + 180.0, KeyScheme::Wasd),
+        robot("Robot1", first, heading_first, KeyScheme::Arrows),
+        robot("Robot2", second, heading_second, KeyScheme::Wasd),
     ])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn square(lo: DVec2, hi: DVec2) -> Vec<(DVec2, DVec2)> {
+        let c = [lo, DVec2::new(hi.x, lo.y), hi, DVec2::new(lo.x, hi.y)];
+        (0..4).map(|i| (c[i], c[(i + 1) % 4])).collect()
+    }
+
+    #[test]
+    fn a_ray_stops_at_the_first_wall() {
+        let walls = square(DVec2::ZERO, DVec2::new(10.0, 4.0));
+        let d = ray_distance(&walls, DVec2::new(2.0, 2.0), DVec2::X);
+        assert!((d - 8.0).abs() < 1e-9, "{d}");
+        let up = ray_distance(&walls, DVec2::new(2.0, 2.0), DVec2::Y);
+        assert!((up - 2.0).abs() < 1e-9, "{up}");
+        assert_eq!(ray_distance(&[], DVec2::ZERO, DVec2::X), RAY_MAX_M);
+    }
+
+    #[test]
+    fn a_robot_faces_the_long_way_but_not_at_the_other_robot() {
+        // A 10 m x 4 m room: from (2, 2) the long way is +x, but the other robot stands there,
+        // so the robot faces the most open direction outside 60 degrees of it.
+        let walls = square(DVec2::ZERO, DVec2::new(10.0, 4.0));
+        let alone = open_heading(&walls, DVec2::new(2.0, 2.0), 0.5, DVec2::new(2.0, -50.0));
+        // The long way (towards the far corner at most: about 14 degrees).
+        let alone = (alone + 540.0).rem_euclid(360.0) - 180.0;
+        assert!(alone.abs() <= 20.0, "{alone}");
+        let h = open_heading(&walls, DVec2::new(2.0, 2.0), 0.5, DVec2::new(6.0, 2.0));
+        let off = (h + 540.0).rem_euclid(360.0) - 180.0;
+        assert!(off.abs() >= AVOID_DEG, "{h}");
+        // Whatever it chose, there is more room ahead than a robot length.
+        let d = DVec2::from_angle(h.to_radians());
+        assert!(ray_distance(&walls, DVec2::new(2.0, 2.0), d) > 1.0, "{h}");
+    }
 }
