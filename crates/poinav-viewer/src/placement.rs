@@ -1,5 +1,6 @@
-//! Where the robots start when no scenario says: two robots in the largest zone of the floor,
-//! each at the point of that zone farthest from any obstacle, at least 2.5 m apart, each facing
+//! Where the robots start when no scenario says: two robots in the largest zone of the floor
+//! (the second in the next largest with room when that one is too small), each at the point
+//! farthest from any obstacle, at least 2.5 m apart, each facing
 //! the most open direction that does not point at the other robot, so the first key press
 //! drives into free space.
 
@@ -99,26 +100,17 @@ fn ring_area(ring: &[DVec2]) -> f64 {
         / 2.0
 }
 
-/// Two robots driven by keys (Robot1: arrow keys, Robot2: W A S D) with `profile`, placed in
-/// the floor's largest zone where they have the most room.
-pub fn default_robots(
-    floor: &Floor,
-    profile: &RobotProfile,
-) -> Result<Vec<RobotSetup>, ViewerError> {
-    let fail = |message: &str| ViewerError::Placement {
-        floor: floor.name.clone(),
-        message: message.into(),
-    };
-    let zone = floor
-        .zones
-        .iter()
-        .filter(|z| z.ring.len() >= 3)
-        .max_by(|a, b| ring_area(&a.ring).total_cmp(&ring_area(&b.ring)))
-        .ok_or_else(|| fail("it has no spaces (IfcSpace)"))?;
+/// Candidate start points of `zone` with their room (distance to the nearest wall or obstacle
+/// edge), most room first, and the wall segments near the zone.
+fn spots(floor: &Floor, zone: &poinav_nav::FloorZone) -> (Vec<(f64, DVec2)>, Vec<(DVec2, DVec2)>) {
     let (lo, hi) = zone.ring.iter().fold(
         (DVec2::splat(f64::MAX), DVec2::splat(f64::MIN)),
         |(lo, hi), p| (lo.min(*p), hi.max(*p)),
     );
+    let size = hi - lo;
+    if !(size.x.is_finite() && size.y.is_finite()) {
+        return (Vec::new(), Vec::new());
+    }
     let segments: Vec<(DVec2, DVec2)> = floor
         .obstacles
         .iter()
@@ -137,10 +129,6 @@ pub fn default_robots(
             .any(|o| o.rings.first().is_some_and(|r| inside(r, p)))
     };
     let mut candidates: Vec<(f64, DVec2)> = Vec::new();
-    let size = hi - lo;
-    if !(size.x.is_finite() && size.y.is_finite()) {
-        return Err(fail("its largest space has no finite outline"));
-    }
     let step = STEP_M.max((size.x * size.y / MAX_POINTS).sqrt());
     let (nx, ny) = ((size.x / step) as usize, (size.y / step) as usize);
     for j in 0..=ny {
@@ -162,17 +150,49 @@ pub fn default_robots(
             .then(a.1.x.total_cmp(&b.1.x))
             .then(a.1.y.total_cmp(&b.1.y))
     });
+    (candidates, segments)
+}
+
+/// Two robots driven by keys (Robot1: arrow keys, Robot2: W A S D) with `profile`, placed in
+/// the floor's largest zone where they have the most room; when that zone has room for one
+/// robot only, the second goes to the next largest zone with room for it.
+pub fn default_robots(
+    floor: &Floor,
+    profile: &RobotProfile,
+) -> Result<Vec<RobotSetup>, ViewerError> {
+    let fail = |message: &str| ViewerError::Placement {
+        floor: floor.name.clone(),
+        message: message.into(),
+    };
+    let mut zones: Vec<&poinav_nav::FloorZone> =
+        floor.zones.iter().filter(|z| z.ring.len() >= 3).collect();
+    if zones.is_empty() {
+        return Err(fail("it has no spaces (IfcSpace)"));
+    }
+    zones.sort_by(|a, b| ring_area(&b.ring).total_cmp(&ring_area(&a.ring)));
     let need = 0.5 * profile.width_m.hypot(profile.length_m) + 0.05;
-    let first = candidates
-        .first()
-        .filter(|c| c.0 > need)
-        .ok_or_else(|| fail("its largest space has no spot wide enough for the robot"))?
-        .1;
-    let second = candidates
-        .iter()
-        .find(|c| c.0 > need && c.1.distance(first) >= APART_M)
-        .ok_or_else(|| fail("its largest space has no room for a second robot"))?
-        .1;
+    let mut first: Option<DVec2> = None;
+    let mut second: Option<DVec2> = None;
+    let mut segments: Vec<(DVec2, DVec2)> = Vec::new();
+    for zone in &zones {
+        let (candidates, near) = spots(floor, zone);
+        let mut fits = candidates.iter().filter(|c| c.0 > need).map(|c| c.1);
+        match first {
+            None => {
+                let Some(p) = fits.next() else { continue };
+                first = Some(p);
+                second = fits.find(|q| q.distance(p) >= APART_M);
+            }
+            Some(p) => second = fits.find(|q| q.distance(p) >= APART_M),
+        }
+        segments.extend(near);
+        if second.is_some() {
+            break;
+        }
+    }
+    let first =
+        first.ok_or_else(|| fail("none of its spaces has a spot wide enough for the robot"))?;
+    let second = second.ok_or_else(|| fail("its spaces have no room for a second robot"))?;
     let width = profile.width_m.max(0.0);
     let heading_first = open_heading(&segments, first, width, second);
     let heading_second = open_heading(&segments, second, width, first);

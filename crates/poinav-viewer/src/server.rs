@@ -116,8 +116,9 @@ fn storey_json(s: &ViewStorey) -> serde_json::Value {
         })
         .collect();
     // What the section plane cuts: walls, columns and the like drawn as filled outlines, so a
-    // cut storey reads as a plan from above; other obstacles as lighter outlines.
-    let outlines = |structure: bool| -> Vec<Vec<[f64; 2]>> {
+    // cut storey reads as a plan from above (a click on one inspects its element); other
+    // obstacles' outlines too, for pages that draw them.
+    let outlines = |structure: bool| -> Vec<serde_json::Value> {
         floor
             .obstacles
             .iter()
@@ -126,7 +127,7 @@ fn storey_json(s: &ViewStorey) -> serde_json::Value {
                 o.rings
                     .iter()
                     .filter(|r| r.len() >= 3)
-                    .map(|r| ring_json(r))
+                    .map(|r| json!({"id": o.id, "ring": ring_json(r)}))
             })
             .collect()
     };
