@@ -100,9 +100,14 @@ fn ring_area(ring: &[DVec2]) -> f64 {
         / 2.0
 }
 
+/// A candidate start point and its room, metres.
+type Spot = (f64, DVec2);
+/// A wall or outline edge.
+type Segment = (DVec2, DVec2);
+
 /// Candidate start points of `zone` with their room (distance to the nearest wall or obstacle
 /// edge), most room first, and the wall segments near the zone.
-fn spots(floor: &Floor, zone: &poinav_nav::FloorZone) -> (Vec<(f64, DVec2)>, Vec<(DVec2, DVec2)>) {
+fn spots(floor: &Floor, zone: &poinav_nav::FloorZone) -> (Vec<Spot>, Vec<Segment>) {
     let (lo, hi) = zone.ring.iter().fold(
         (DVec2::splat(f64::MAX), DVec2::splat(f64::MIN)),
         |(lo, hi), p| (lo.min(*p), hi.max(*p)),
