@@ -40,6 +40,12 @@ try {
   page.on('pageerror', (e) => consoleErrors.push(String(e)));
   const pause = (ms) => page.waitForTimeout(ms);
   const robots = () => page.evaluate(() => window.poinav.robots());
+  // Waits at least `min` ms, then until `done()` or 5 s.
+  const holdUntil = async (done, min) => {
+    await pause(min);
+    const t = Date.now();
+    while (Date.now() - t < 5000 && !(await done())) await pause(50);
+  };
 
   // 1. The page loads the building and receives live states.
   await page.goto(url);
@@ -62,9 +68,10 @@ try {
   check('building covers the view', coverage > 0.08, { coverage });
 
   // 3. Holding ArrowUp moves Robot1 (its reported pose changes); Robot2 stays.
+  // Held until the robot has moved (at most 5 s): a loaded machine may step slowly.
   const before = await robots();
   await page.keyboard.down('ArrowUp');
-  await pause(400);
+  await holdUntil(() => robots().then((r) => Math.hypot(r[0].x - before[0].x, r[0].y - before[0].y) > 0.4), 400);
   await page.keyboard.up('ArrowUp');
   await pause(500);
   const after = await robots();
@@ -92,7 +99,7 @@ try {
   // 5. W A S D drive Robot2; its rays hit in blue.
   const r2a = (await robots())[1];
   await page.keyboard.down('w');
-  await pause(300);
+  await holdUntil(() => robots().then((r) => Math.hypot(r[1].x - r2a.x, r[1].y - r2a.y) > 0.25), 300);
   await page.keyboard.up('w');
   await pause(300);
   const r2b = (await robots())[1];

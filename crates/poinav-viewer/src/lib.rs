@@ -3,8 +3,8 @@
 //!
 //! The server owns no IFC knowledge: the caller (the `poinav serve` command) hands it a
 //! [`Viewer`]: the building as GLB bytes, one [`ElementInfo`] per element for click-to-inspect,
-//! the storey to simulate as a plain [`poinav_nav::Floor`] and the robots. The simulation runs
-//! on its own thread at the fixed step of [`poinav_sim::DT`], paced to real time; every step's
+//! every storey as a plain [`poinav_nav::Floor`] with the robots that drive on it, and the storey
+//! shown first; a page can switch the simulated storey. The simulation runs on its own thread at the fixed step of [`poinav_sim::DT`], paced to real time; every step's
 //! state (poses, the five rays with what they hit, roles, brush) and the POI events it caused
 //! go to every connected page over a WebSocket, and the pages' key presses come back the same
 //! way. Assets (three.js from npm, vendored under `web/vendor`) are compiled into the binary,
@@ -34,4 +34,4 @@ pub use live::Live;
 pub use placement::default_robots;
 pub use protocol::ClientMessage;
 pub use server::{bind, Bound};
-pub use state::{ElementInfo, Viewer};
+pub use state::{ElementInfo, ViewStorey, Viewer};

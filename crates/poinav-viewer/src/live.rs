@@ -1,11 +1,13 @@
-//! The live simulation: one thread owns the floor and a [`poinav_sim::Sim`], steps it at the
+//! The live simulation: one thread owns the storeys' floors and a [`poinav_sim::Sim`] on one of
+//! them, steps it at the
 //! fixed step paced to real time, applies the pages' commands between steps and publishes
-//! every step's state as one JSON text that all pages receive.
+//! every step's state as one JSON text that all pages receive. A page can switch the storey: the
+//! simulation then starts again there with that storey's robots.
 //!
 //! A slow page never slows the simulation: states go through a bounded broadcast channel and
 //! a page that falls behind skips to the newest ones.
 
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::mpsc::{self, Receiver, Sender};
 use std::sync::{Arc, Mutex};
 use std::thread::JoinHandle;
@@ -42,6 +44,8 @@ pub(crate) enum Command {
     Pause(bool),
     /// Start again.
     Reset,
+    /// Simulate on storey `index` (one with robots) from its robots' start poses.
+    Storey(usize),
 }
 
 /// What a page gets when it connects: the newest state and the recent events.
@@ -59,33 +63,49 @@ pub struct Live {
     snapshot: Arc<Mutex<Snapshot>>,
     stop: Arc<AtomicBool>,
     thread: Option<JoinHandle<()>>,
-    robots: usize,
+    /// Robots on the storey simulated now.
+    robots: Arc<AtomicUsize>,
+    /// Robots per storey (0: the storey cannot be chosen).
+    per_storey: Vec<usize>,
 }
 
 impl Live {
-    /// Starts the simulation of `robots` on `floor`; fails (before any step) when the robots
-    /// cannot be placed.
+    /// Starts the simulation on `storeys[current]` (each storey a floor and its robots);
+    /// fails (before any step) when that storey's robots cannot be placed.
     pub fn start(
-        floor: Floor,
-        robots: Vec<RobotSetup>,
+        storeys: Vec<(Floor, Vec<RobotSetup>)>,
+        current: usize,
         options: SimOptions,
     ) -> Result<Live, ViewerError> {
         let options = SimOptions {
             record: false,
             ..options
         };
+        let (floor, robots) = storeys.get(current).ok_or_else(|| {
+            ViewerError::Serve(format!(
+                "storey {current} does not exist ({} storeys)",
+                storeys.len()
+            ))
+        })?;
         // Checked here so the caller gets the error, not a dead thread.
-        Sim::new(&floor, &robots, options.clone())?;
+        Sim::new(floor, robots, options.clone())?;
+        let count = Arc::new(AtomicUsize::new(robots.len()));
+        let per_storey = storeys.iter().map(|(_, r)| r.len()).collect();
         let (tx, rx) = mpsc::channel();
         let (states, _) = broadcast::channel(STATE_BUFFER);
         let snapshot = Arc::new(Mutex::new(Snapshot::default()));
         let stop = Arc::new(AtomicBool::new(false));
-        let n = robots.len();
         let thread = {
-            let (states, snapshot, stop) = (states.clone(), snapshot.clone(), stop.clone());
+            let channels = Channels {
+                rx,
+                states: states.clone(),
+                snapshot: snapshot.clone(),
+                stop: stop.clone(),
+                robots: count.clone(),
+            };
             std::thread::Builder::new()
                 .name("poinav-sim".into())
-                .spawn(move || run(floor, robots, options, rx, states, snapshot, stop))
+                .spawn(move || run(storeys, current, options, channels))
                 .map_err(|e| {
                     ViewerError::Serve(format!("cannot start the simulation thread: {e}"))
                 })?
@@ -96,13 +116,19 @@ impl Live {
             snapshot,
             stop,
             thread: Some(thread),
-            robots: n,
+            robots: count,
+            per_storey,
         })
     }
 
-    /// Number of robots.
+    /// Number of robots on the storey simulated now.
     pub fn robots(&self) -> usize {
-        self.robots
+        self.robots.load(Ordering::SeqCst)
+    }
+
+    /// Number of robots on each storey (0 where none could be placed).
+    pub fn robots_per_storey(&self) -> &[usize] {
+        &self.per_storey
     }
 
     pub(crate) fn send(&self, c: Command) {
@@ -137,7 +163,7 @@ impl Drop for Live {
     }
 }
 
-fn state_json(sim: &Sim<'_>, paused: bool, events: &[Value]) -> String {
+fn state_json(sim: &Sim<'_>, storey: usize, paused: bool, events: &[Value]) -> String {
     let floor = sim.floor();
     let readings = sim.readings();
     let robots: Vec<Value> = sim
@@ -186,6 +212,7 @@ fn state_json(sim: &Sim<'_>, paused: bool, events: &[Value]) -> String {
         .collect();
     json!({
         "type": "state",
+        "storey": storey,
         "step": sim.steps(),
         "t": round(sim.time(), 4),
         "paused": paused,
@@ -200,17 +227,37 @@ fn round(v: f64, decimals: i32) -> f64 {
     (v * f).round() / f
 }
 
-fn run(
-    floor: Floor,
-    setups: Vec<RobotSetup>,
-    options: SimOptions,
+/// The simulation thread's ends of the channels.
+struct Channels {
     rx: Receiver<Command>,
     states: broadcast::Sender<Arc<str>>,
     snapshot: Arc<Mutex<Snapshot>>,
     stop: Arc<AtomicBool>,
+    robots: Arc<AtomicUsize>,
+}
+
+fn run(
+    storeys: Vec<(Floor, Vec<RobotSetup>)>,
+    mut current: usize,
+    options: SimOptions,
+    channels: Channels,
 ) {
+    let Channels {
+        rx,
+        states,
+        snapshot,
+        stop,
+        robots,
+    } = channels;
     let dt = options.dt;
-    let Ok(mut sim) = Sim::new(&floor, &setups, options.clone()) else {
+    let start = |i: usize| {
+        let (floor, setups) = storeys.get(i)?;
+        if setups.is_empty() {
+            return None;
+        }
+        Sim::new(floor, setups, options.clone()).ok()
+    };
+    let Some(mut sim) = start(current) else {
         return;
     };
     let mut paused = false;
@@ -225,15 +272,28 @@ fn run(
                     down,
                     name,
                 } => {
-                    sim.press(robot, key, down, &name);
+                    // A key sent for the storey before a switch may name a robot this storey
+                    // does not have.
+                    if robot < sim.robots().len() {
+                        sim.press(robot, key, down, &name);
+                    }
                 }
                 Command::Brush { robot } => {
-                    sim.press(robot, Key::Brush, true, "Brush");
+                    if robot < sim.robots().len() {
+                        sim.press(robot, Key::Brush, true, "Brush");
+                    }
                 }
                 Command::Pause(p) => paused = p,
                 Command::Reset => {
-                    if let Ok(s) = Sim::new(&floor, &setups, options.clone()) {
+                    if let Some(s) = start(current) {
                         sim = s;
+                    }
+                }
+                Command::Storey(i) => {
+                    if let Some(s) = start(i) {
+                        sim = s;
+                        current = i;
+                        robots.store(sim.robots().len(), Ordering::SeqCst);
                     }
                 }
             }
@@ -246,7 +306,7 @@ fn run(
             .iter()
             .filter_map(|e| serde_json::from_str(&e.to_json()).ok())
             .collect();
-        let text: Arc<str> = state_json(&sim, paused, &events).into();
+        let text: Arc<str> = state_json(&sim, current, paused, &events).into();
         {
             let mut s = snapshot.lock().unwrap_or_else(|e| e.into_inner());
             s.state = Some(text.clone());

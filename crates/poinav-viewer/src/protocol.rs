@@ -31,11 +31,17 @@ pub enum ClientMessage {
     },
     /// Start the simulation again from the robots' start poses.
     Reset,
+    /// Simulate on another storey (index in the scene's `storeys`), with its robots.
+    Storey {
+        /// Storey index.
+        index: usize,
+    },
 }
 
 impl ClientMessage {
-    /// Parses and checks one text message against `robots` robots.
-    pub fn parse(text: &str, robots: usize) -> Result<ClientMessage, String> {
+    /// Parses and checks one text message against `robots` robots on the storey simulated now
+    /// and `per_storey` robots on each storey (a storey without robots cannot be chosen).
+    pub fn parse(text: &str, robots: usize, per_storey: &[usize]) -> Result<ClientMessage, String> {
         let m: ClientMessage =
             serde_json::from_str(text).map_err(|e| format!("malformed message: {e}"))?;
         match &m {
@@ -44,6 +50,16 @@ impl ClientMessage {
                 parse_key(key)?;
             }
             ClientMessage::Brush { robot } => check_robot(*robot, robots)?,
+            ClientMessage::Storey { index } => match per_storey.get(*index) {
+                None => {
+                    return Err(format!(
+                        "storey {index} does not exist (storeys: 0..{})",
+                        per_storey.len().saturating_sub(1)
+                    ))
+                }
+                Some(0) => return Err(format!("storey {index} has no robots")),
+                Some(_) => {}
+            },
             ClientMessage::Pause { .. } | ClientMessage::Reset => {}
         }
         Ok(m)
@@ -86,7 +102,11 @@ mod tests {
 
     #[test]
     fn accepts_both_key_schemes_for_any_robot() {
-        let m = ClientMessage::parse(r#"{"type":"key","robot":1,"key":"ArrowUp","down":true}"#, 2);
+        let m = ClientMessage::parse(
+            r#"{"type":"key","robot":1,"key":"ArrowUp","down":true}"#,
+            2,
+            &[2],
+        );
         assert!(m.is_ok());
         assert_eq!(parse_key("W"), Ok(Key::Forward));
         assert_eq!(parse_key("ArrowLeft"), Ok(Key::Left));
@@ -102,10 +122,26 @@ mod tests {
             r#"{"type":"teleport","robot":0}"#,
             r#"{"type":"key","robot":-1,"key":"w","down":true}"#,
             r#"[1,2,3]"#,
+            r#"{"type":"storey","index":1}"#,
+            r#"{"type":"storey"}"#,
             "not json",
             "",
         ] {
-            assert!(ClientMessage::parse(bad, 2).is_err(), "{bad}");
+            assert!(ClientMessage::parse(bad, 2, &[2]).is_err(), "{bad}");
         }
+    }
+
+    #[test]
+    fn a_storey_switch_needs_a_storey_with_robots() {
+        let per_storey = [2, 0, 3];
+        let ok = ClientMessage::parse(r#"{"type":"storey","index":2}"#, 2, &per_storey);
+        assert_eq!(ok, Ok(ClientMessage::Storey { index: 2 }));
+        let empty = ClientMessage::parse(r#"{"type":"storey","index":1}"#, 2, &per_storey);
+        assert_eq!(empty, Err("storey 1 has no robots".to_string()));
+        let missing = ClientMessage::parse(r#"{"type":"storey","index":3}"#, 2, &per_storey);
+        assert_eq!(
+            missing,
+            Err("storey 3 does not exist (storeys: 0..2)".to_string())
+        );
     }
 }

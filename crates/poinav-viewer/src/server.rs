@@ -25,7 +25,8 @@ use crate::config::ServerConfig;
 use crate::error::ViewerError;
 use crate::live::{Command, Live};
 use crate::protocol::{parse_key, ClientMessage};
-use crate::state::Viewer;
+use crate::state::{ViewStorey, Viewer};
+use poinav_nav::ObstacleKind;
 
 /// WebSocket close code for a message over the size limit (RFC 6455 §7.4.1).
 const CLOSE_TOO_BIG: u16 = 1009;
@@ -60,8 +61,14 @@ fn ray_colours(i: usize) -> (&'static str, &'static str) {
     }
 }
 
-fn scene_json(v: &Viewer, config: &ServerConfig) -> String {
-    let robots: Vec<_> = v
+fn ring_json(ring: &[glam::DVec2]) -> Vec<[f64; 2]> {
+    ring.iter().map(|p| [p.x, p.y]).collect()
+}
+
+/// One storey of the scene: its floor (bounds, doors with their passages and status, zones,
+/// obstacle outlines for the cut view) and its robots with their start poses.
+fn storey_json(s: &ViewStorey) -> serde_json::Value {
+    let robots: Vec<_> = s
         .robots
         .iter()
         .enumerate()
@@ -74,51 +81,93 @@ fn scene_json(v: &Viewer, config: &ServerConfig) -> String {
                 "keys": match i { 0 => Some("arrows"), 1 => Some("wasd"), _ => None },
                 "ray_clear": clear,
                 "ray_hit": hit,
+                "start": [r.start.x, r.start.y],
+                "heading_deg": r.heading_deg,
             })
         })
         .collect();
-    let doors: Vec<_> = v
-        .floor
+    let floor = &s.floor;
+    let doors: Vec<_> = floor
         .doors
         .iter()
-        .map(|d| json!({"id": d.id, "name": d.name, "status": d.status.label()}))
+        .map(|d| {
+            json!({
+                "id": d.id,
+                "name": d.name,
+                "status": d.status.label(),
+                "doorless": d.doorless,
+                "center": [d.center.x, d.center.y],
+                "ring": ring_json(&d.ring),
+            })
+        })
         .collect();
-    let zones: Vec<_> = v
-        .floor
+    let zones: Vec<_> = floor
         .zones
         .iter()
         .map(|z| {
             json!({
                 "id": z.id,
                 "name": z.name,
-                "ring": z.ring.iter().map(|p| [p.x, p.y]).collect::<Vec<_>>(),
+                "ring": ring_json(&z.ring),
                 "roles": z.roles.iter().map(|r| r.label()).collect::<Vec<_>>(),
                 "protocol": z.coordination.map(|c| c.1.label()),
                 "min_separation_m": z.coordination.map(|c| c.0),
             })
         })
         .collect();
-    let bounds = v
-        .floor
+    // What the section plane cuts: walls, columns and the like drawn as filled outlines, so a
+    // cut storey reads as a plan from above (a click on one inspects its element); other
+    // obstacles' outlines too, for pages that draw them.
+    let outlines = |structure: bool| -> Vec<serde_json::Value> {
+        floor
+            .obstacles
+            .iter()
+            .filter(|o| (o.kind == ObstacleKind::Structure) == structure)
+            .flat_map(|o| {
+                o.rings
+                    .iter()
+                    .filter(|r| r.len() >= 3)
+                    .map(|r| json!({"id": o.id, "ring": ring_json(r)}))
+            })
+            .collect()
+    };
+    let bounds = floor
         .bounds()
         .map(|(lo, hi)| json!({"min": [lo.x, lo.y], "max": [hi.x, hi.y]}));
     json!({
-        "title": v.title,
-        "source": v.source,
-        "storey": v.floor.name,
-        "elevation_m": v.floor.elevation_m,
-        "dt": v.options.dt,
+        "storey": floor.name,
+        "elevation_m": floor.elevation_m,
         "bounds": bounds,
         "robots": robots,
+        "unplaced": s.unplaced,
         "doors": doors,
         "zones": zones,
-        "limits": {
-            "max_clients": config.max_clients,
-            "max_message_bytes": config.max_message_bytes,
-            "max_messages_per_second": config.max_messages_per_second,
-        },
+        "structure": outlines(true),
+        "obstacles": outlines(false),
     })
-    .to_string()
+}
+
+/// The scene: every storey ([`storey_json`]) and, at the top level, the one shown first (its
+/// fields copied), with the title, the fixed step and the server's limits.
+fn scene_json(v: &Viewer, config: &ServerConfig) -> String {
+    let storeys: Vec<_> = v.storeys.iter().map(storey_json).collect();
+    let mut scene = storeys.get(v.current).cloned().unwrap_or_else(|| json!({}));
+    if let Some(o) = scene.as_object_mut() {
+        o.insert("title".into(), json!(v.title));
+        o.insert("source".into(), json!(v.source));
+        o.insert("dt".into(), json!(v.options.dt));
+        o.insert("current".into(), json!(v.current));
+        o.insert("storeys".into(), json!(storeys));
+        o.insert(
+            "limits".into(),
+            json!({
+                "max_clients": config.max_clients,
+                "max_message_bytes": config.max_message_bytes,
+                "max_messages_per_second": config.max_messages_per_second,
+            }),
+        );
+    }
+    scene.to_string()
 }
 
 /// Binds `config.addr` and starts the simulation of `viewer`; nothing is served until
@@ -130,7 +179,12 @@ pub async fn bind(config: ServerConfig, viewer: Viewer) -> Result<Bound, ViewerE
         .iter()
         .map(|(k, v)| (k.clone(), serde_json::to_string(v).unwrap_or_default()))
         .collect();
-    let live = Live::start(viewer.floor, viewer.robots, viewer.options)?;
+    let storeys = viewer
+        .storeys
+        .into_iter()
+        .map(|s| (s.floor, s.robots))
+        .collect();
+    let live = Live::start(storeys, viewer.current, viewer.options)?;
     let listener = tokio::net::TcpListener::bind(config.addr)
         .await
         .map_err(|e| ViewerError::Bind {
@@ -353,6 +407,7 @@ fn command(m: ClientMessage) -> Option<Command> {
         ClientMessage::Brush { robot } => Command::Brush { robot },
         ClientMessage::Pause { paused } => Command::Pause(paused),
         ClientMessage::Reset => Command::Reset,
+        ClientMessage::Storey { index } => Command::Storey(index),
     })
 }
 
@@ -388,7 +443,7 @@ async fn client(mut socket: WebSocket, slot: Slot) {
                         if !bucket.take() {
                             Some("too many messages: slow down".to_string())
                         } else {
-                            match ClientMessage::parse(text.as_str(), app.live.robots()).map(command) {
+                            match ClientMessage::parse(text.as_str(), app.live.robots(), app.live.robots_per_storey()).map(command) {
                                 Ok(Some(c)) => {
                                     app.live.send(c);
                                     None

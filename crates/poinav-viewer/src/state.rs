@@ -1,5 +1,5 @@
-//! What the viewer shows: the building (GLB), what a click on an element reveals, the storey
-//! the robots drive on and the robots.
+//! What the viewer shows: the building (GLB), what a click on an element reveals, every storey
+//! as a floor with the robots that drive on it, and which storey is shown first.
 
 use std::collections::BTreeMap;
 
@@ -40,12 +40,44 @@ pub struct Viewer {
     pub glb: Vec<u8>,
     /// Click-to-inspect data by GlobalId.
     pub elements: BTreeMap<String, ElementInfo>,
-    /// The storey the robots drive on.
-    pub floor: Floor,
-    /// The robots (index 0 is driven by the arrow keys, index 1 by W A S D).
-    pub robots: Vec<RobotSetup>,
+    /// Every storey a page can switch to, lowest first.
+    pub storeys: Vec<ViewStorey>,
+    /// The index in `storeys` of the storey the robots drive on when the server starts.
+    pub current: usize,
     /// Simulation settings (fixed step; `record` is turned off for a live run).
     pub options: SimOptions,
     /// Where the robots came from, in words (shown on the page).
     pub source: String,
+}
+
+/// One storey of the viewer: its floor and the robots that drive on it when it is chosen.
+#[derive(Debug, Clone)]
+pub struct ViewStorey {
+    /// The storey as a floor.
+    pub floor: Floor,
+    /// The robots (index 0 is driven by the arrow keys, index 1 by W A S D); empty when they
+    /// could not be placed.
+    pub robots: Vec<RobotSetup>,
+    /// Why there are no robots on this storey (it cannot then be chosen).
+    pub unplaced: Option<String>,
+}
+
+impl ViewStorey {
+    /// A storey with its robots.
+    pub fn new(floor: Floor, robots: Vec<RobotSetup>) -> ViewStorey {
+        ViewStorey {
+            floor,
+            robots,
+            unplaced: None,
+        }
+    }
+
+    /// A storey where no robot could be placed, and why.
+    pub fn unplaced(floor: Floor, reason: String) -> ViewStorey {
+        ViewStorey {
+            floor,
+            robots: Vec::new(),
+            unplaced: Some(reason),
+        }
+    }
 }

@@ -11,7 +11,7 @@ use glam::DVec2;
 use poinav_nav::{Floor, FloorObstacle, FloorZone, ObstacleKind};
 use poinav_poi::{RobotProfile, Role};
 use poinav_sim::SimOptions;
-use poinav_viewer::{ServerConfig, Viewer};
+use poinav_viewer::{ServerConfig, ViewStorey, Viewer};
 use serde_json::Value;
 use tokio::io::{AsyncReadExt, AsyncWriteExt};
 use tokio::net::TcpStream;
@@ -64,12 +64,51 @@ fn room() -> Floor {
 async fn start(config: ServerConfig) -> (SocketAddr, tokio::sync::oneshot::Sender<()>) {
     let floor = room();
     let robots = poinav_viewer::default_robots(&floor, &RobotProfile::paper()).unwrap();
+    serve(config, vec![ViewStorey::new(floor, robots)]).await
+}
+
+/// The test room on the ground floor and, 3 m above, a 6 x 4 m room whose robots start
+/// elsewhere; a third storey without robots.
+async fn start_two_storeys() -> (SocketAddr, tokio::sync::oneshot::Sender<()>) {
+    let ground = room();
+    let mut upper = room();
+    upper.name = "Upper floor".into();
+    upper.elevation_m = 3.0;
+    for o in &mut upper.obstacles {
+        for p in o.rings.iter_mut().flatten() {
+            *p = DVec2::new(p.x * 0.6, p.y * 4.0 / 6.0);
+        }
+    }
+    upper.zones[0].ring = rect(0.0, 0.0, 6.0, 4.0);
+    let profile = RobotProfile::paper();
+    let a = poinav_viewer::default_robots(&ground, &profile).unwrap();
+    let b = poinav_viewer::default_robots(&upper, &profile).unwrap();
+    let roof = Floor {
+        name: "Roof".into(),
+        elevation_m: 6.0,
+        ..Floor::default()
+    };
+    serve(
+        ServerConfig::default(),
+        vec![
+            ViewStorey::new(ground, a),
+            ViewStorey::new(upper, b),
+            ViewStorey::unplaced(roof, "it has no spaces (IfcSpace)".into()),
+        ],
+    )
+    .await
+}
+
+async fn serve(
+    config: ServerConfig,
+    storeys: Vec<ViewStorey>,
+) -> (SocketAddr, tokio::sync::oneshot::Sender<()>) {
     let viewer = Viewer {
         title: "test".into(),
         glb: b"glTF-test".to_vec(),
         elements: BTreeMap::new(),
-        floor,
-        robots,
+        storeys,
+        current: 0,
         options: SimOptions::default(),
         source: "test".into(),
     };
@@ -394,7 +433,7 @@ async fn websockets_from_other_sites_are_refused() {
 }
 
 #[test]
-fn default_robots_start_apart_in_the_largest_space_facing_each_other() {
+fn default_robots_start_apart_in_the_largest_space_facing_open_space() {
     let floor = room();
     let robots = poinav_viewer::default_robots(&floor, &RobotProfile::paper()).unwrap();
     assert_eq!(robots.len(), 2);
@@ -409,9 +448,73 @@ fn default_robots_start_apart_in_the_largest_space_facing_each_other() {
         (a.y - 3.0).abs() < 0.051 && (b.y - 3.0).abs() < 0.051,
         "{a} {b}"
     );
-    let turn = (robots[1].heading_deg - robots[0].heading_deg).rem_euclid(360.0);
-    assert!((turn - 180.0).abs() < 1e-9);
+    // Neither faces the other (their first move must not hit it), and each has at least 2 m of
+    // room ahead inside the 10 x 6 m room.
+    for (r, other) in [(&robots[0], b), (&robots[1], a)] {
+        let towards = (other - r.start).to_angle().to_degrees();
+        let off = (r.heading_deg - towards + 540.0).rem_euclid(360.0) - 180.0;
+        assert!(off.abs() >= 60.0, "{} faces the other robot: {off}", r.name);
+        let d = DVec2::from_angle(r.heading_deg.to_radians());
+        let room_ahead = [
+            (10.0 - r.start.x) / d.x,
+            -r.start.x / d.x,
+            (6.0 - r.start.y) / d.y,
+            -r.start.y / d.y,
+        ]
+        .into_iter()
+        .filter(|t| t.is_finite() && *t > 0.0)
+        .fold(f64::MAX, f64::min);
+        assert!(room_ahead >= 2.0, "{}: {room_ahead} m ahead", r.name);
+    }
     let empty = Floor::default();
     let e = poinav_viewer::default_robots(&empty, &RobotProfile::paper()).unwrap_err();
     assert!(e.to_string().contains("no spaces"), "{e}");
+}
+
+#[tokio::test]
+async fn a_page_moves_the_robots_to_another_storey() {
+    let (addr, _stop) = start_two_storeys().await;
+    let (status, body) = raw_get(addr, "GET", "/api/scene").await;
+    assert_eq!(status, 200);
+    let scene: Value = serde_json::from_str(&body).unwrap();
+    assert_eq!(scene["current"], 0);
+    assert_eq!(scene["storey"], "Test floor");
+    let storeys = scene["storeys"].as_array().unwrap();
+    assert_eq!(storeys.len(), 3);
+    assert_eq!(storeys[1]["elevation_m"], 3.0);
+    assert_eq!(storeys[1]["structure"].as_array().unwrap().len(), 4);
+    assert_eq!(storeys[2]["robots"].as_array().unwrap().len(), 0);
+    assert_eq!(storeys[2]["unplaced"], "it has no spaces (IfcSpace)");
+    let start = &storeys[1]["robots"][0]["start"];
+    let mut page = ws(addr).await;
+    assert_eq!(latest_state(&mut page).await["storey"], 0);
+    // A storey without robots is refused, and the simulation stays where it is.
+    page.send(Message::Text(r#"{"type":"storey","index":2}"#.into()))
+        .await
+        .unwrap();
+    let e = next_of(&mut page, "error").await;
+    assert_eq!(e["message"], "storey 2 has no robots");
+    page.send(Message::Text(r#"{"type":"storey","index":1}"#.into()))
+        .await
+        .unwrap();
+    let deadline = Instant::now() + Duration::from_secs(10);
+    let state = loop {
+        let s = latest_state(&mut page).await;
+        if s["storey"] == 1 {
+            break s;
+        }
+        assert!(Instant::now() < deadline, "the storey never changed");
+    };
+    // The robots stand at the upper storey's start poses (inside its 6 x 4 m room).
+    let x = state["robots"][0]["x"].as_f64().unwrap();
+    let y = state["robots"][0]["y"].as_f64().unwrap();
+    assert!(
+        (x - start[0].as_f64().unwrap()).abs() < 0.05,
+        "{x} vs {start}"
+    );
+    assert!(
+        (y - start[1].as_f64().unwrap()).abs() < 0.05,
+        "{y} vs {start}"
+    );
+    assert!(x < 6.0 && y < 4.0, "{x} {y}");
 }

@@ -2,11 +2,17 @@
 //
 // Server messages (JSON text):
 //   {"type":"events","events":[...]}  recent POI events, sent once on connect
-//   {"type":"state","step":N,"t":s,"paused":b,"robots":[{name,x,y,heading_deg,speed,mode,
+//   {"type":"state","storey":i,"step":N,"t":s,"paused":b,"robots":[{name,x,y,heading_deg,speed,mode,
 //     brush:{on,angle_deg},roles:[...],rays:[{deg,d,hit,class}]}],"events":[...]}  every step
 //   {"type":"error","message":"..."}  a refused message of ours
 // Page messages: {"type":"key","robot":i,"key":"ArrowUp","down":true}, {"type":"brush","robot":i},
-//   {"type":"pause","paused":b}, {"type":"reset"}.
+//   {"type":"pause","paused":b}, {"type":"reset"}, {"type":"storey","index":i}.
+// The scene (/api/scene) lists every storey (`storeys`: elevation, bounds, robots with start
+// poses, doors with passage rings and status, zones, `structure` outlines); `current` is the one
+// simulated first. The page shows a storey cut by a horizontal section plane at a set height
+// above its floor (everything above is clipped; cut walls get flat caps), so the robots, their
+// rays and the doors' colours are visible from above; switching storey is the server's
+// decision (every page follows the state's `storey`).
 // Coordinates: plan (x, y) on the storey at elevation e is three.js (x, e + h, -y), as in the GLB.
 
 import * as THREE from 'three';
@@ -47,6 +53,13 @@ const hook = {
   elements: 0,
   lastState: null,
   states: 0,
+  storey: null,
+  follow: false,
+  cut_m: 1.5,
+  xray: false,
+  firstFrameMs: null,
+  buildingMs: null,
+  buildingFrameMs: null,
 };
 window.poinav = hook;
 window.addEventListener('error', (e) => hook.errors.push(String(e.message)));
@@ -57,6 +70,8 @@ const renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffe
 renderer.setPixelRatio(window.devicePixelRatio);
 renderer.xr.enabled = true;
 view.appendChild(renderer.domElement);
+// The section plane: keeps what lies below elevation + cut (world y up); off in X-ray view.
+const cutPlane = new THREE.Plane(new THREE.Vector3(0, -1, 0), 1.5);
 const vrButton = VRButton.createButton(renderer);
 vrButton.id = 'vr-button';
 view.appendChild(vrButton);
@@ -67,8 +82,9 @@ renderer.xr.addEventListener('sessionstart', () => {
   const pose = liveRobots[0]?.pose;
   const at = pose ? new THREE.Vector3(pose.x - 1.5, 0, -pose.y) : orbit.target.clone();
   scene.position.set(-at.x, -elevation, -at.z);
+  applyCut();
 });
-renderer.xr.addEventListener('sessionend', () => scene.position.set(0, 0, 0));
+renderer.xr.addEventListener('sessionend', () => { scene.position.set(0, 0, 0); applyCut(); });
 
 const scene = new THREE.Scene();
 scene.background = new THREE.Color(BACKGROUND);
@@ -117,6 +133,33 @@ function fitTop() {
   pan.update();
 }
 
+// The first view: the storey from above at an angle, all of it (and so its robots) in view.
+function frameStorey() {
+  const cx = (bounds.min[0] + bounds.max[0]) / 2;
+  const cy = (bounds.min[1] + bounds.max[1]) / 2;
+  const radius = Math.max(4, Math.hypot(bounds.max[0] - bounds.min[0], bounds.max[1] - bounds.min[1]) / 2);
+  const distance = (radius / Math.sin((perspective.fov * Math.PI) / 360)) * 1.05;
+  const target = new THREE.Vector3(cx, elevation, -cy);
+  orbit.target.copy(target);
+  perspective.position.copy(target).add(new THREE.Vector3(0.3, 0.85, 0.45).normalize().multiplyScalar(distance));
+  perspective.near = Math.max(0.01, distance / 2000);
+  perspective.far = distance * 50;
+  perspective.updateProjectionMatrix();
+  orbit.update();
+}
+
+let cutHeight = 1.5; // section height above the storey's floor, metres
+let xray = false;
+function applyCut() {
+  cutPlane.constant = elevation + cutHeight + scene.position.y;
+  renderer.clippingPlanes = xray ? [] : [cutPlane];
+  capGroup.position.y = elevation + cutHeight - 0.01;
+  capGroup.visible = !xray;
+  $('cut-value').textContent = `${cutHeight.toFixed(1)} m`;
+  hook.cut_m = cutHeight;
+  hook.xray = xray;
+}
+
 function setCamera(which) {
   camera = which === 'top' ? top : perspective;
   orbit.enabled = which !== 'top';
@@ -131,6 +174,11 @@ const elementMeshes = []; // meshes that a click can hit, each with .userData.el
 const elementsById = new Map(); // GlobalId -> { object, meshes, originals }
 let zoneGroup = new THREE.Group();
 scene.add(zoneGroup);
+let capGroup = new THREE.Group(); // flat caps where the section plane cuts walls and columns
+scene.add(capGroup);
+let doorGroup = new THREE.Group(); // door and doorway passages on the floor, coloured by status
+scene.add(doorGroup);
+const doorMeshes = new Map(); // door GlobalId -> mesh
 let poiView = false;
 
 function elementColour(data) {
@@ -142,18 +190,35 @@ function elementColour(data) {
   return NO_ROLE;
 }
 
+// A see-through copy of a material, for the X-ray view.
+const xrayMaterials = new WeakMap();
+function xrayOf(material) {
+  if (!xrayMaterials.has(material)) {
+    const m = material.clone();
+    m.transparent = true;
+    m.opacity = 0.18;
+    m.depthWrite = false;
+    xrayMaterials.set(material, m);
+  }
+  return xrayMaterials.get(material);
+}
+
 function applyColours() {
   for (const { meshes, originals, object } of elementsById.values()) {
     const colour = elementColour(object.userData);
     meshes.forEach((m, i) => {
+      let solid = originals[i];
       if (poiView) {
         if (!m.userData.poiMaterial) m.userData.poiMaterial = new THREE.MeshLambertMaterial();
         m.userData.poiMaterial.color.set(colour);
-        m.material = m.userData.poiMaterial;
-      } else {
-        m.material = originals[i];
+        solid = m.userData.poiMaterial;
       }
+      m.material = xray ? xrayOf(solid) : solid;
     });
+  }
+  for (const [id, mesh] of doorMeshes) {
+    const status = elementsById.get(id)?.object.userData.AccessibilityStatus ?? mesh.userData.status;
+    mesh.material.color.set(STATUS_COLOURS[status] || NO_ROLE);
   }
   zoneGroup.visible = poiView;
   $('legend').hidden = !poiView;
@@ -188,8 +253,55 @@ function addZones(info) {
   scene.add(zoneGroup);
 }
 
+function flat(ring, material, y) {
+  const geometry = new THREE.ShapeGeometry(new THREE.Shape(ring.map(([x, yy]) => new THREE.Vector2(x, yy))));
+  geometry.rotateX(-Math.PI / 2); // plan (x, y) -> (x, 0, -y)
+  const mesh = new THREE.Mesh(geometry, material);
+  mesh.position.y = y;
+  return mesh;
+}
+
+// The storey's caps (walls and columns where the plane cuts them) and door passages.
+function addOverlays(info) {
+  for (const g of [capGroup, doorGroup]) {
+    scene.remove(g);
+    g.traverse((o) => { if (o.isMesh) { o.geometry.dispose(); o.material.dispose?.(); } });
+  }
+  capGroup = new THREE.Group();
+  const cap = new THREE.MeshBasicMaterial({ color: 0x334155, side: THREE.DoubleSide });
+  for (const { id, ring } of info.structure || []) {
+    if (ring.length < 3) continue;
+    const mesh = flat(ring, cap, 0);
+    mesh.userData.element = id;
+    capGroup.add(mesh);
+  }
+  doorGroup = new THREE.Group();
+  doorMeshes.clear();
+  for (const d of info.doors || []) {
+    if (!d.ring || d.ring.length < 3) continue;
+    const status = elementsById.get(d.id)?.object.userData.AccessibilityStatus ?? d.status;
+    const material = new THREE.MeshBasicMaterial({ color: STATUS_COLOURS[status] || NO_ROLE, side: THREE.DoubleSide });
+    const mesh = flat(d.ring, material, elevation + 0.03);
+    mesh.userData.element = d.id;
+    mesh.userData.status = d.status;
+    doorGroup.add(mesh);
+    doorMeshes.set(d.id, mesh);
+  }
+  scene.add(capGroup, doorGroup);
+}
+
+function megabytes(n) { return (n / 1e6).toFixed(1); }
+
 async function loadBuilding(info) {
-  const gltf = await new GLTFLoader().loadAsync('/api/model.glb');
+  const t0 = performance.now();
+  let bytes = 0;
+  const gltf = await new GLTFLoader().loadAsync('/api/model.glb', (e) => {
+    bytes = e.loaded;
+    $('progress').textContent = e.total
+      ? `loading the building: ${megabytes(e.loaded)} of ${megabytes(e.total)} MB`
+      : `loading the building: ${megabytes(e.loaded)} MB`;
+  });
+  $('progress').textContent = 'preparing the building…';
   scene.add(gltf.scene);
   gltf.scene.traverse((o) => {
     const d = o.userData || {};
@@ -201,18 +313,87 @@ async function loadBuilding(info) {
   });
   hook.elements = elementsById.size;
   const box = new THREE.Box3().setFromObject(gltf.scene);
-  if (!box.isEmpty()) {
-    const centre = box.getCenter(new THREE.Vector3());
-    const size = box.getSize(new THREE.Vector3()).length();
-    orbit.target.copy(centre);
-    perspective.position.copy(centre).add(new THREE.Vector3(0.62, 0.75, 0.22).normalize().multiplyScalar(size * 1.0));
-    perspective.near = Math.max(0.01, size / 2000);
-    perspective.far = size * 20;
-    perspective.updateProjectionMatrix();
+  if (!info.bounds && !box.isEmpty()) {
+    bounds = { min: [box.min.x, -box.max.z], max: [box.max.x, -box.min.z] };
+    fitTop();
+    frameStorey();
+  }
+  hook.buildingMs = performance.now() - t0;
+  $('progress').textContent = `building: ${elementsById.size} elements, ${megabytes(bytes)} MB, loaded in ${(hook.buildingMs / 1000).toFixed(1)} s`;
+}
+
+// ---------------------------------------------------------------- storeys
+let storeyIndex = null;
+let title = '';
+function storeyOptions(info) {
+  const storeys = info.storeys || [];
+  $('storey').innerHTML = storeys.map((st, i) => {
+    const label = `${esc(st.storey)} (${(+st.elevation_m).toFixed(2)} m)`;
+    const off = st.robots && st.robots.length ? '' : ` disabled title="${esc(st.unplaced || 'no robots')}"`;
+    return `<option value="${i}"${off}>${label}</option>`;
+  }).join('');
+  $('storey').disabled = storeys.length < 2;
+}
+
+function releaseKeys() {
+  for (const code of held) send({ type: 'key', robot: KEYS[code][0], key: KEYS[code][1], down: false });
+  held.clear();
+}
+
+// Shows storey `i`: its floor level, cut, caps, doors, zones and robots, and a camera on it.
+function showStorey(i) {
+  const st = hook.scene.storeys?.[i] ?? hook.scene;
+  storeyIndex = i;
+  hook.storey = i;
+  elevation = st.elevation_m || 0;
+  if (st.bounds) bounds = st.bounds;
+  zones = st.zones || [];
+  addZones(st);
+  addOverlays(st);
+  releaseKeys();
+  for (const r of liveRobots) { scene.remove(r.group); r.rays.forEach((l) => scene.remove(l)); }
+  liveRobots = (st.robots || []).map((spec, k) => makeRobot(spec, k));
+  liveRobots.forEach((r) => {
+    if (r.spec.start) placeRobot(r, { x: r.spec.start[0], y: r.spec.start[1], heading_deg: r.spec.heading_deg || 0, rays: [] });
+  });
+  if (playing) setLiveVisible(false);
+  $('brushes').innerHTML = liveRobots.map((r, k) => `<button id="brush-${k}">${esc(r.spec.name)} brush</button>`).join('');
+  liveRobots.forEach((r, k) => $(`brush-${k}`).addEventListener('click', () => send({ type: 'brush', robot: k })));
+  $('storey').value = String(i);
+  $('title').textContent = `${title} · ${st.storey}`;
+  applyCut();
+  applyColours();
+  fitTop();
+  frameStorey();
+}
+
+$('storey').addEventListener('change', (e) => send({ type: 'storey', index: Number(e.target.value) }));
+$('cut').addEventListener('input', (e) => { cutHeight = Number(e.target.value); applyCut(); });
+$('xray').addEventListener('change', (e) => { xray = e.target.checked; applyCut(); applyColours(); });
+
+let follow = false;
+function setFollow(on) {
+  follow = on;
+  hook.follow = on;
+  $('follow').textContent = `Follow Robot1: ${on ? 'on' : 'off'}`;
+}
+$('follow').addEventListener('click', () => setFollow(!follow));
+
+// Follow mode: both cameras keep Robot1 in the middle of the view.
+function followRobot() {
+  const r = (playing ? playRobots : liveRobots)[0];
+  if (!follow || !r?.pose) return;
+  const p = new THREE.Vector3(r.pose.x, elevation, -r.pose.y);
+  const delta = p.clone().sub(orbit.target);
+  if (delta.lengthSq() > 1e-8) {
+    orbit.target.add(delta);
+    perspective.position.add(delta);
     orbit.update();
   }
-  if (!info.bounds && !box.isEmpty()) bounds = { min: [box.min.x, -box.max.z], max: [box.max.x, -box.min.z] };
-  fitTop();
+  pan.target.copy(p);
+  top.position.set(p.x, elevation + 100, p.z);
+  top.lookAt(p);
+  pan.update();
 }
 
 // ---------------------------------------------------------------- click to inspect
@@ -225,10 +406,15 @@ renderer.domElement.addEventListener('pointerup', (e) => {
   const r = renderer.domElement.getBoundingClientRect();
   const ndc = new THREE.Vector2(((e.clientX - r.left) / r.width) * 2 - 1, -((e.clientY - r.top) / r.height) * 2 + 1);
   raycaster.setFromCamera(ndc, camera);
-  const targets = zoneGroup.visible ? [...elementMeshes, ...zoneGroup.children] : elementMeshes;
-  const hit = raycaster.intersectObjects(targets, false).find((h) => h.object.visible);
+  const targets = [...elementMeshes, ...(capGroup.visible ? capGroup.children : []), ...(zoneGroup.visible ? zoneGroup.children : [])];
+  const hit = raycaster.intersectObjects(targets, false).find((h) => h.object.visible && belowCut(h.point));
   inspect(hit ? hit.object.userData.element : null);
 });
+
+// True for a point the section plane keeps (everything in X-ray view).
+function belowCut(p) {
+  return xray || cutPlane.distanceToPoint(p) >= -1e-6;
+}
 
 function esc(s) {
   return String(s ?? '').replace(/[&<>"']/g, (c) => ({ '&': '&amp;', '<': '&lt;', '>': '&gt;', '"': '&quot;', "'": '&#39;' }[c]));
@@ -393,7 +579,7 @@ function addEvents(events) {
     if (e.kind === 'key') continue;
     if (e.kind === 'status-changed' && elementsById.has(e.element)) {
       elementsById.get(e.element).object.userData.AccessibilityStatus = e.to;
-      if (poiView) applyColours();
+      applyColours();
     }
     if ((e.kind === 'role-added' || e.kind === 'role-removed') && elementsById.has(e.element)) {
       const d = elementsById.get(e.element).object.userData;
@@ -435,6 +621,7 @@ function connect() {
     else if (msg.type === 'state') {
       hook.states += 1;
       hook.lastState = msg;
+      if (msg.storey !== undefined && msg.storey !== storeyIndex) showStorey(msg.storey);
       msg.robots.forEach((s, i) => { if (liveRobots[i]) placeRobot(liveRobots[i], s); });
       if (msg.events.length) addEvents(msg.events);
       if (!playing) {
@@ -458,6 +645,7 @@ function typing(e) { return e.target instanceof HTMLInputElement && e.target.typ
 window.addEventListener('keydown', (e) => {
   if (typing(e)) return;
   if (e.code === 'KeyC' && !e.repeat) { setCamera(hook.camera === 'top' ? 'perspective' : 'top'); return; }
+  if (e.code === 'KeyF' && !e.repeat) { setFollow(!follow); return; }
   const k = KEYS[e.code];
   if (!k) return;
   e.preventDefault();
@@ -471,10 +659,7 @@ window.addEventListener('keyup', (e) => {
   held.delete(e.code);
   send({ type: 'key', robot: k[0], key: k[1], down: false });
 });
-window.addEventListener('blur', () => {
-  for (const code of held) send({ type: 'key', robot: KEYS[code][0], key: KEYS[code][1], down: false });
-  held.clear();
-});
+window.addEventListener('blur', releaseKeys);
 let paused = false;
 $('pause').addEventListener('click', () => { paused = !paused; send({ type: 'pause', paused }); $('pause').textContent = paused ? 'Resume' : 'Pause'; });
 $('reset').addEventListener('click', () => send({ type: 'reset' }));
@@ -585,11 +770,12 @@ hook.screenPoint = (classPrefix) => {
     if (!(el.object.userData.IfcClass || '').startsWith(classPrefix)) continue;
     const box = new THREE.Box3().setFromObject(el.object);
     const p = box.getCenter(new THREE.Vector3());
-    p.y = box.max.y;
+    p.y = xray ? box.max.y : Math.min(box.max.y, cutPlane.constant - 0.01);
     const ndc = p.clone().project(camera);
     if (Math.abs(ndc.x) > 0.9 || Math.abs(ndc.y) > 0.9) continue;
     raycaster.setFromCamera(new THREE.Vector2(ndc.x, ndc.y), camera);
-    const hit = raycaster.intersectObjects(elementMeshes, false)[0];
+    const targets = [...elementMeshes, ...(capGroup.visible ? capGroup.children : [])];
+    const hit = raycaster.intersectObjects(targets, false).find((h) => belowCut(h.point));
     if (!hit || hit.object.userData.element !== id) continue;
     return { id, x: rect.left + ((ndc.x + 1) / 2) * rect.width, y: rect.top + ((1 - ndc.y) / 2) * rect.height };
   }
@@ -604,6 +790,26 @@ hook.elementColour = (name) => {
   }
   return null;
 };
+// Pixels of the view (full resolution) within `tol` (sum of |dr|+|dg|+|db|) of each colour.
+hook.countColours = (colours, tol = 30) => {
+  const src = renderer.domElement;
+  const c = document.createElement('canvas');
+  c.width = src.width;
+  c.height = src.height;
+  const g = c.getContext('2d');
+  g.drawImage(src, 0, 0);
+  const px = g.getImageData(0, 0, c.width, c.height).data;
+  const want = colours.map((s) => { const v = parseInt(s.slice(1), 16); return [(v >> 16) & 255, (v >> 8) & 255, v & 255]; });
+  const counts = want.map(() => 0);
+  for (let i = 0; i < px.length; i += 4) {
+    want.forEach(([r, gg, b], k) => { if (Math.abs(px[i] - r) + Math.abs(px[i + 1] - gg) + Math.abs(px[i + 2] - b) <= tol) counts[k] += 1; });
+  }
+  return counts;
+};
+// The door passages drawn on the storey: id, status and colour.
+hook.doors = () => [...doorMeshes].map(([id, m]) => ({ id, status: elementsById.get(id)?.object.userData.AccessibilityStatus ?? m.userData.status, colour: `#${m.material.color.getHexString()}` }));
+hook.cutAt = () => cutPlane.constant;
+hook.showTop = () => { setCamera('top'); fitTop(); };
 hook.cameraMatrix = () => camera.projectionMatrix.elements.concat(camera.matrixWorld.elements);
 // The view as a 160 x 120 RGBA thumbnail (what a screenshot shows, small).
 hook.thumbnail = () => {
@@ -630,32 +836,32 @@ const clock = new THREE.Timer();
 function frame(time) {
   clock.update(time);
   advancePlayback(Math.min(clock.getDelta(), 0.1));
+  followRobot();
   renderer.render(scene, camera);
   hook.frames = (hook.frames || 0) + 1;
+  if (hook.firstFrameMs === null) hook.firstFrameMs = performance.now();
+  if (hook.buildingFrameMs === null && hook.buildingMs !== null) hook.buildingFrameMs = performance.now();
 }
 
 async function start() {
   legend();
+  $('progress').textContent = 'loading the scene…';
   const info = await (await fetch('/api/scene')).json();
   hook.scene = info;
-  elevation = info.elevation_m || 0;
-  if (info.bounds) bounds = info.bounds;
-  zones = info.zones || [];
-  $('title').textContent = `${info.title} · ${info.storey}`;
+  title = info.title;
   $('title').title = info.source;
+  storeyOptions(info);
   resize();
-  await loadBuilding(info);
-  addZones(info);
-  applyColours();
-  liveRobots = info.robots.map((spec, i) => makeRobot(spec, i));
-  $('brushes').innerHTML = info.robots.map((r, i) => `<button id="brush-${i}">${esc(r.name)} brush</button>`).join('');
-  info.robots.forEach((r, i) => $(`brush-${i}`).addEventListener('click', () => send({ type: 'brush', robot: i })));
+  // The storey, its robots and their rays are drawn before the building arrives.
+  showStorey(info.current ?? 0);
   connect();
   renderer.setAnimationLoop(frame);
+  await loadBuilding(info);
+  applyColours();
   hook.ready = true;
 }
 start().catch((err) => {
   hook.errors.push(String(err));
-  $('status').textContent = `failed: ${err.message}`;
-  $('status').classList.add('error');
+  $('progress').textContent = `failed: ${err.message}`;
+  $('progress').classList.add('error');
 });

@@ -1,5 +1,5 @@
 //! `poinav serve [FILE.ifc] [--scenario S]`: prepares the building (GLB, click-to-inspect data,
-//! the storey as a floor) and the robots, then runs the browser viewer (`poinav-viewer`) until
+//! every storey as a floor with its robots) and runs the browser viewer (`poinav-viewer`) until
 //! interrupted.
 
 use std::collections::BTreeMap;
@@ -15,7 +15,7 @@ use poinav_ifc::property::{property_sets, PropertyValue, Scalar, TypedScalar};
 use poinav_ifc::{spatial, units, Model};
 use poinav_poi::{classify, Classification};
 use poinav_sim::{RobotSetup, Scenario, SimOptions};
-use poinav_viewer::{ElementInfo, ServerConfig, Viewer};
+use poinav_viewer::{ElementInfo, ServerConfig, ViewStorey, Viewer};
 
 /// Arguments of `poinav serve`.
 #[derive(Debug, clap::Args)]
@@ -28,7 +28,8 @@ pub struct Args {
     /// key-driven robots start in the largest space.
     #[arg(long)]
     scenario: Option<PathBuf>,
-    /// The storey the robots drive on (Name or GlobalId; default: the lowest with doors).
+    /// The storey the robots drive on first (Name or GlobalId; default: the lowest with doors);
+    /// the page can switch to any other storey with room for the robots.
     #[arg(long)]
     storey: Option<String>,
     /// Robot profile (default: the paper's robot).
@@ -80,12 +81,21 @@ fn value_text(v: &PropertyValue) -> String {
     }
 }
 
-/// The GLB and the click-to-inspect data of `model`, and the storey `storey` as a floor.
+/// What the viewer shows of a model: the GLB, the click-to-inspect data, every storey as a floor
+/// (lowest first) and the index of the storey the robots drive on first.
+struct Shown {
+    glb: Vec<u8>,
+    elements: BTreeMap<String, ElementInfo>,
+    floors: Vec<poinav_nav::Floor>,
+    current: usize,
+}
+
+/// What the viewer shows of `model`, with `storey` (else the default storey) first.
 fn building(
     model: &Model,
     classification: &Classification,
     storey: Option<&str>,
-) -> anyhow::Result<(Vec<u8>, BTreeMap<String, ElementInfo>, poinav_nav::Floor)> {
+) -> anyhow::Result<Shown> {
     let meshes = mesh_model(model);
     let unit = units::length_unit(model);
     let structure = spatial::spatial_structure(model, &unit);
@@ -143,8 +153,20 @@ fn building(
     }
     let plans = floor_plans_with_meshes(model, &meshes, &PlanOptions::default());
     let plan = poinav_sim::ifc_floor::pick(&plans, storey).map_err(anyhow::Error::msg)?;
-    let floor = poinav_sim::ifc_floor::floor_from_plan(plan, classification);
-    Ok((glb, elements, floor))
+    let current = plans
+        .iter()
+        .position(|p| std::ptr::eq(p, plan))
+        .unwrap_or(0);
+    let floors = plans
+        .iter()
+        .map(|p| poinav_sim::ifc_floor::floor_from_plan(p, classification))
+        .collect();
+    Ok(Shown {
+        glb,
+        elements,
+        floors,
+        current,
+    })
 }
 
 fn scenario_robots(s: &Scenario) -> (Vec<RobotSetup>, SimOptions) {
@@ -185,28 +207,55 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         .storey
         .as_deref()
         .or(scenario.as_ref().and_then(|s| s.building.storey.as_deref()));
-    let (glb, elements, floor) = building(&model, &classification, storey)?;
-    let (robots, options, source) = match &scenario {
+    let Shown {
+        glb,
+        elements,
+        floors,
+        current,
+    } = building(&model, &classification, storey)?;
+    let (scenario_setups, options, source) = match &scenario {
         Some(s) => {
             let (r, o) = scenario_robots(s);
             (
-                r,
+                Some(r),
                 o,
                 format!("robots of scenario `{}` ({})", s.name, s.file),
             )
         }
         None => (
-            poinav_viewer::default_robots(&floor, &profile)?,
+            None,
             SimOptions::default(),
             "two robots in the largest space".to_string(),
         ),
     };
+    // The scenario's robots drive on its storey; every other storey (and every storey without
+    // a scenario) gets two key-driven robots where there is room for them.
+    let mut scenario_setups = scenario_setups;
+    let storeys: Vec<ViewStorey> = floors
+        .into_iter()
+        .enumerate()
+        .map(
+            |(i, floor)| match scenario_setups.take_if(|_| i == current) {
+                Some(robots) => ViewStorey::new(floor, robots),
+                None => match poinav_viewer::default_robots(&floor, &profile) {
+                    Ok(robots) => ViewStorey::new(floor, robots),
+                    Err(e) => {
+                        let reason = e.to_string();
+                        ViewStorey::unplaced(floor, reason)
+                    }
+                },
+            },
+        )
+        .collect();
+    if let Some(reason) = &storeys[current].unplaced {
+        anyhow::bail!("{reason}");
+    }
     let viewer = Viewer {
         title,
         glb,
         elements,
-        floor,
-        robots,
+        storeys,
+        current,
         options,
         source,
     };
