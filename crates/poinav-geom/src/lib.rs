@@ -62,6 +62,7 @@ pub mod section;
 pub mod surface_style;
 pub mod triangulation;
 mod unit_assignment;
+pub mod winding_chain;
 
 pub use door::{door_geometry, DoorGeometry};
 pub use door_passage::{door_passage, DoorPassage};
