@@ -81,6 +81,10 @@ pub enum PlanSource {
     /// ([`SectionBounds`]). It holds the product, but what is free inside it is not known:
     /// navigation draws it as unknown space.
     Outline,
+    /// The union of its connected parts' convex hulls in the band: a dense furnishing (at least
+    /// [`crate::part_hulls::DENSE_TRIANGLES`] triangles), drawn conservatively
+    /// ([`crate::part_hulls`]); it holds the exact section.
+    PartHulls,
 }
 
 /// One product's regions of one kind.
@@ -384,6 +388,18 @@ fn draw<'m>(
                     .is_some_and(|(lo, hi)| lo.z <= band.1 && hi.z >= band.0) =>
         {
             cut(mesh_shadow_within(&m.mesh, bounds), PlanSource::Shadow)
+        }
+        // Dense furniture (thousands of triangles, as Revit and ArchiCAD export it): each part's
+        // hull, linear in triangles, instead of the exact section's boolean.
+        Some(m)
+            if kind == PlanItemKind::Furniture
+                && m.mesh.triangles.len() >= crate::part_hulls::DENSE_TRIANGLES =>
+        {
+            (
+                crate::part_hulls::part_hulls(&m.mesh, band.0, band.1),
+                PlanSource::PartHulls,
+                None,
+            )
         }
         Some(m) => cut(
             mesh_section_within(&m.mesh, band.0, band.1, bounds),

@@ -51,6 +51,7 @@ pub mod footprint;
 pub mod half_space;
 pub mod mesh;
 mod parameterized_profile;
+pub mod part_hulls;
 pub mod placement;
 pub mod plan_kind;
 pub mod polygon;
