@@ -89,6 +89,18 @@ pub enum GeomError {
         /// The limit, seconds.
         seconds: f64,
     },
+    /// Sectioning the product's mesh for a floor plan reached a bound
+    /// ([`crate::section::SectionBounds`]); its conservative outline is drawn instead, as
+    /// unknown space.
+    #[error("{id}: {class}'s section {limit}; its convex hull is drawn as unknown space")]
+    SectionLimit {
+        /// The product.
+        id: EntityId,
+        /// Its class.
+        class: String,
+        /// The bound reached.
+        limit: crate::section::SectionLimit,
+    },
     /// A product without a representation from which a footprint can be made.
     #[error("{id}: {class} has no shape representation with geometry")]
     NoGeometry {
@@ -111,6 +123,7 @@ impl GeomError {
             | GeomError::Degenerate { id, .. }
             | GeomError::Empty { id, .. }
             | GeomError::TimeLimit { id, .. }
+            | GeomError::SectionLimit { id, .. }
             | GeomError::NoGeometry { id, .. } => *id,
         }
     }

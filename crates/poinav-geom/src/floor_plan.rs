@@ -6,6 +6,9 @@
 //! How each product is drawn:
 //! - its mesh ([`crate::mesh_model`], openings already cut) is cut by the band
 //!   ([`crate::section::mesh_section`], exact for solids);
+//! - a section that reaches a bound ([`SectionBounds`]) is drawn as its conservative outline
+//!   ([`PlanSource::Outline`], unknown space to navigation) and listed in
+//!   [`FloorPlan::problems`];
 //! - stairs and ramps are drawn with their whole shadow ([`crate::section::mesh_shadow`]):
 //!   a wheeled robot must not enter a flight even where it passes high above the band;
 //! - a product whose mesh could not be made falls back on its footprint
@@ -35,7 +38,7 @@ use crate::mesh::ElementMesh;
 use crate::placement::PlacementCache;
 use crate::plan_kind::{plan_kind, PlanItemKind};
 use crate::region::{self, Region};
-use crate::section::{mesh_section, mesh_shadow};
+use crate::section::{mesh_section_within, mesh_shadow_within, CutOff, SectionBounds};
 use crate::{mesh_model, ModelMeshes};
 
 /// The height band of a plan, relative to the storey's elevation.
@@ -47,6 +50,9 @@ pub struct PlanOptions {
     /// Top of the band, metres: the robot's height (1.0 by default, which also shows desks and
     /// tables; pass the robot profile's height for its navigation map).
     pub band_max_m: f64,
+    /// How much work one product's section may take.
+    #[serde(default)]
+    pub section: SectionBounds,
 }
 
 impl Default for PlanOptions {
@@ -54,6 +60,7 @@ impl Default for PlanOptions {
         PlanOptions {
             band_min_m: 0.05,
             band_max_m: 1.0,
+            section: SectionBounds::default(),
         }
     }
 }
@@ -70,6 +77,14 @@ pub enum PlanSource {
     Footprint,
     /// Its door passage (door openings).
     Passage,
+    /// The convex hull of what it has in the band: its section (or shadow) reached a bound
+    /// ([`SectionBounds`]). It holds the product, but what is free inside it is not known:
+    /// navigation draws it as unknown space.
+    Outline,
+    /// The union of its connected parts' convex hulls in the band: a dense furnishing (at least
+    /// [`crate::part_hulls::DENSE_TRIANGLES`] triangles), drawn conservatively
+    /// ([`crate::part_hulls`]); it holds the exact section.
+    PartHulls,
 }
 
 /// One product's regions of one kind.
@@ -294,7 +309,7 @@ pub fn floor_plans_with_progress(
                 .map_init(
                     || PlacementCache::new(model),
                     |cache, &p| {
-                        let d = draw(cache, p, band, &by_id, &failures);
+                        let d = draw(cache, p, band, &options.section, &by_id, &failures);
                         ticker.tick();
                         d
                     },
@@ -354,6 +369,7 @@ fn draw<'m>(
     cache: &mut PlacementCache<'m>,
     product: Entity<'m>,
     band: (f64, f64),
+    bounds: &SectionBounds,
     meshes: &FxHashMap<EntityId, &ElementMesh>,
     failures: &FxHashMap<EntityId, &GeomError>,
 ) -> Drawn {
@@ -368,9 +384,13 @@ fn draw<'m>(
         error,
         fell_back,
     };
-    let (regions, source) = match meshes.get(&product.id()) {
+    let cut = |r: Result<Vec<Region>, CutOff>, source: PlanSource| match r {
+        Ok(regions) => (regions, source, None),
+        Err(c) => (c.outline, PlanSource::Outline, Some(c.limit)),
+    };
+    let (regions, source, limit) = match meshes.get(&product.id()) {
         Some(m) if matches!(kind, PlanItemKind::Stair | PlanItemKind::Ramp) => {
-            (mesh_shadow(&m.mesh), PlanSource::Shadow)
+            cut(mesh_shadow_within(&m.mesh, bounds), PlanSource::Shadow)
         }
         // A space modelled as an open surface (walls and floor, no ceiling: duplex-apartment's
         // hallways) has no inside to cut: the air it bounds is its shadow, where it reaches
@@ -382,9 +402,24 @@ fn draw<'m>(
                     .bounds()
                     .is_some_and(|(lo, hi)| lo.z <= band.1 && hi.z >= band.0) =>
         {
-            (mesh_shadow(&m.mesh), PlanSource::Shadow)
+            cut(mesh_shadow_within(&m.mesh, bounds), PlanSource::Shadow)
         }
-        Some(m) => (mesh_section(&m.mesh, band.0, band.1), PlanSource::Section),
+        // Dense furniture (thousands of triangles, as Revit and ArchiCAD export it): each part's
+        // hull, linear in triangles, instead of the exact section's boolean.
+        Some(m)
+            if kind == PlanItemKind::Furniture
+                && m.mesh.triangles.len() >= crate::part_hulls::DENSE_TRIANGLES =>
+        {
+            (
+                crate::part_hulls::part_hulls(&m.mesh, band.0, band.1),
+                PlanSource::PartHulls,
+                None,
+            )
+        }
+        Some(m) => cut(
+            mesh_section_within(&m.mesh, band.0, band.1, bounds),
+            PlanSource::Section,
+        ),
         None => {
             let why = failures.get(&product.id()).map(|e| (*e).clone());
             match footprint_regions(cache, product, band, kind) {
@@ -392,13 +427,31 @@ fn draw<'m>(
                     if let Some(e) = why {
                         out.problems.push(problem(e, true));
                     }
-                    (r, PlanSource::Footprint)
+                    (r, PlanSource::Footprint, None)
                 }
                 Err(e) => {
                     out.problems.push(problem(why.unwrap_or(e), false));
-                    (Vec::new(), PlanSource::Footprint)
+                    (Vec::new(), PlanSource::Footprint, None)
                 }
             }
+        }
+    };
+    // A section given up on: its hull stands in for an obstacle (unknown space), but a space
+    // (free space) is left out rather than grown.
+    let (regions, source) = match limit {
+        None => (regions, source),
+        Some(limit) => {
+            let error = GeomError::SectionLimit {
+                id: product.id(),
+                class: product.type_name().to_string(),
+                limit,
+            };
+            if kind == PlanItemKind::Space {
+                out.problems.push(problem(error, false));
+                return out;
+            }
+            out.problems.push(problem(error, !regions.is_empty()));
+            (regions, source)
         }
     };
     let item = |kind: PlanItemKind, regions: Vec<Region>, source: PlanSource| PlanItem {

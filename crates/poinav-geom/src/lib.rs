@@ -51,6 +51,7 @@ pub mod footprint;
 pub mod half_space;
 pub mod mesh;
 mod parameterized_profile;
+pub mod part_hulls;
 pub mod placement;
 pub mod plan_kind;
 pub mod polygon;
@@ -63,6 +64,7 @@ pub mod section;
 pub mod surface_style;
 pub mod triangulation;
 mod unit_assignment;
+pub mod winding_chain;
 
 pub use door::{door_geometry, DoorGeometry};
 pub use door_passage::{door_passage, DoorPassage};

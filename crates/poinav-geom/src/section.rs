@@ -9,21 +9,38 @@
 //!   with their orientation (up-facing +1, down-facing -1); a point is inside the solid where
 //!   the count is not zero (a vertical ray leaves a solid once more than it enters it);
 //! - the projection of the parts of triangles inside the slab (a table top at 0.75 m, the
-//!   underside of a shelf).
+//!   underside of a shelf), each counted +1.
 //!
 //! Several closed parts that overlap (an element made of several solids) are filled once. An
 //! open mesh (surfaces that enclose nothing) has no inside: only the second term is used.
 //!
+//! Neither term is built as a union of triangles: each is a sum of projected polygons, whose
+//! count at a point is the winding number of the sum's boundary, in which the edges neighbouring
+//! triangles share cancel ([`WindingChain`]). What is left is the slice's cut at `z_min` and
+//! the outline of the band's surfaces (silhouettes and cuts), so only those edges go through
+//! the polygon boolean, and the cost grows linearly with the number of triangles. Edges are cut
+//! at points computed the same way from either triangle sharing them, so they cancel exactly.
+//!
 //! Booleans on coplanar faces (an opening flush with its wall's face) leave needle-thin
 //! faces behind, whose projections would be slivers reaching into door gaps: every part of a
 //! section thinner than 2 x [`SLIVER_M`] is removed ([`region::open`]).
+//!
+//! Sectioning is bounded ([`SectionBounds`]): a section whose outline has more edges than the
+//! boolean should be given, or that takes too long, is given up ([`CutOff`]) with a
+//! conservative outline instead, the convex hull of everything the mesh has in the slab, which
+//! callers draw as unknown space.
+
+use std::fmt;
+use std::time::{Duration, Instant};
 
 use glam::{DVec2, DVec3};
 use i_overlay::core::overlay_rule::OverlayRule;
+use serde::{Deserialize, Serialize};
 
 use crate::mesh::Mesh;
 use crate::polygon;
 use crate::region::{self, overlay_rings, Region};
+use crate::winding_chain::WindingChain;
 
 /// Half the thickness below which parts of a section are dropped as slivers, metres.
 pub const SLIVER_M: f64 = 0.001;
@@ -31,45 +48,253 @@ pub const SLIVER_M: f64 = 0.001;
 /// Projected triangles smaller than this (square metres) are left out: vertical faces.
 const MIN_TRIANGLE_AREA: f64 = 1e-10;
 
+/// Triangles between two looks at the clock.
+const CLOCK_EVERY: usize = 1024;
+
+/// How much work sectioning one mesh may take before it is given up ([`CutOff`]). Only
+/// pathological meshes reach these: the densest furniture of a real Revit model leaves a few
+/// thousand edges.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct SectionBounds {
+    /// Most edges of the outline handed to the polygon boolean (what is left of the mesh's
+    /// projected edges after neighbours cancel). Deterministic.
+    pub max_edges: usize,
+    /// Longest time for one mesh, seconds (only pathological meshes depend on the machine).
+    pub time_limit_s: f64,
+}
+
+impl Default for SectionBounds {
+    fn default() -> Self {
+        SectionBounds {
+            max_edges: 200_000,
+            time_limit_s: 10.0,
+        }
+    }
+}
+
+impl SectionBounds {
+    /// No bound at all.
+    pub fn unbounded() -> SectionBounds {
+        SectionBounds {
+            max_edges: usize::MAX,
+            time_limit_s: f64::INFINITY,
+        }
+    }
+
+    fn deadline(&self) -> Option<Instant> {
+        let limit = Duration::try_from_secs_f64(self.time_limit_s).ok()?;
+        Instant::now().checked_add(limit)
+    }
+}
+
+/// Why a section was given up.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum SectionLimit {
+    /// Its outline has more edges than [`SectionBounds::max_edges`].
+    Edges {
+        /// Edges of the outline.
+        edges: usize,
+        /// The bound.
+        limit: usize,
+    },
+    /// It took longer than [`SectionBounds::time_limit_s`].
+    Time {
+        /// The bound, seconds.
+        seconds: f64,
+    },
+}
+
+impl fmt::Display for SectionLimit {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            SectionLimit::Edges { edges, limit } => {
+                write!(f, "has an outline of {edges} edges, more than {limit}")
+            }
+            SectionLimit::Time { seconds } => write!(f, "took longer than {seconds} s"),
+        }
+    }
+}
+
+/// A section given up on: why, and a conservative outline in its place.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CutOff {
+    /// Which bound was reached.
+    pub limit: SectionLimit,
+    /// The convex hull of everything the mesh has inside the slab: it holds the section, so
+    /// obstacles drawn from it only grow. Empty when nothing is in the slab.
+    pub outline: Vec<Region>,
+}
+
 /// The section of `mesh` by the slab `z_min..=z_max` (world metres), see the module
-/// documentation; empty when the mesh does not reach into the slab.
+/// documentation; empty when the mesh does not reach into the slab. Unbounded: see
+/// [`mesh_section_within`].
 pub fn mesh_section(mesh: &Mesh, z_min: f64, z_max: f64) -> Vec<Region> {
+    mesh_section_within(mesh, z_min, z_max, &SectionBounds::unbounded())
+        .unwrap_or_else(|c| c.outline)
+}
+
+/// [`mesh_section`] within `bounds`: a [`CutOff`] when a bound is reached.
+pub fn mesh_section_within(
+    mesh: &Mesh,
+    z_min: f64,
+    z_max: f64,
+    bounds: &SectionBounds,
+) -> Result<Vec<Region>, CutOff> {
     let Some((lo, hi)) = mesh.bounds() else {
-        return Vec::new();
+        return Ok(Vec::new());
     };
     if hi.z < z_min || lo.z > z_max || z_min.is_nan() || z_max.is_nan() || z_min > z_max {
-        return Vec::new();
+        return Ok(Vec::new());
     }
-    let closed = is_closed(mesh);
-    let mut above: Vec<Vec<[f64; 2]>> = Vec::new();
-    let mut inside: Vec<Vec<[f64; 2]>> = Vec::new();
-    for t in &mesh.triangles {
-        let tri = t.map(|i| mesh.positions[i as usize]);
-        if closed {
-            let part = clip_below(&tri, z_min);
-            if let Some(c) = projected(&part, false) {
-                above.push(c);
-            }
-        }
-        let part = clip_above(&clip_below(&tri, z_min), z_max);
-        if let Some(c) = projected(&part, true) {
-            inside.push(c);
-        }
-    }
-    region::open(
-        &overlay_rings(&above, &inside, OverlayRule::Union),
-        SLIVER_M,
-    )
+    section(mesh, Some((z_min, z_max)), bounds)
 }
 
 /// The projection on XY of every triangle of `mesh` (its whole shadow), whatever its height.
 pub fn mesh_shadow(mesh: &Mesh) -> Vec<Region> {
-    let rings: Vec<Vec<[f64; 2]>> = mesh
-        .triangles
-        .iter()
-        .filter_map(|t| projected(&t.map(|i| mesh.positions[i as usize]), true))
-        .collect();
-    region::open(&overlay_rings(&rings, &[], OverlayRule::Subject), SLIVER_M)
+    mesh_shadow_within(mesh, &SectionBounds::unbounded()).unwrap_or_else(|c| c.outline)
+}
+
+/// [`mesh_shadow`] within `bounds`: a [`CutOff`] when a bound is reached.
+pub fn mesh_shadow_within(mesh: &Mesh, bounds: &SectionBounds) -> Result<Vec<Region>, CutOff> {
+    section(mesh, None, bounds)
+}
+
+/// True once `deadline` (if any) is reached.
+fn past(deadline: Option<Instant>) -> bool {
+    deadline.is_some_and(|d| Instant::now() >= d)
+}
+
+/// The section by `slab`, or the whole shadow (`None`).
+fn section(
+    mesh: &Mesh,
+    slab: Option<(f64, f64)>,
+    bounds: &SectionBounds,
+) -> Result<Vec<Region>, CutOff> {
+    let deadline = bounds.deadline();
+    let give_up = |limit: SectionLimit| CutOff {
+        limit,
+        outline: hull_in(mesh, slab),
+    };
+    let time = || SectionLimit::Time {
+        seconds: bounds.time_limit_s,
+    };
+    // A sum of oriented polygons per term: the slice at the slab's bottom, the band.
+    let closed = slab.is_some() && is_closed(mesh);
+    let mut slice = WindingChain::new();
+    let mut band = WindingChain::new();
+    let (mut a, mut b) = (Vec::with_capacity(8), Vec::with_capacity(8));
+    for (k, t) in mesh.triangles.iter().enumerate() {
+        if k % CLOCK_EVERY == 0 && past(deadline) {
+            return Err(give_up(time()));
+        }
+        let tri = t.map(|i| mesh.positions[i as usize]);
+        let Some((z_min, z_max)) = slab else {
+            add_normalised(&mut band, &tri);
+            continue;
+        };
+        let (lo, hi) = z_range(&tri);
+        if hi < z_min {
+            continue;
+        }
+        // The part above the slab's bottom.
+        let above: &[DVec3] = if lo >= z_min {
+            &tri
+        } else {
+            clip(&tri, z_min, true, &mut a);
+            &a
+        };
+        if closed && above.len() >= 3 {
+            slice.add(above.iter().map(|p| p.truncate()));
+        }
+        if lo <= z_max {
+            let inside: &[DVec3] = if hi <= z_max {
+                above
+            } else {
+                clip(above, z_max, false, &mut b);
+                &b
+            };
+            add_normalised(&mut band, inside);
+        }
+    }
+    let edges = slice.len() + band.len();
+    if edges > bounds.max_edges {
+        return Err(give_up(SectionLimit::Edges {
+            edges,
+            limit: bounds.max_edges,
+        }));
+    }
+    if past(deadline) {
+        return Err(give_up(time()));
+    }
+    let rule = if slab.is_some() {
+        OverlayRule::Union
+    } else {
+        OverlayRule::Subject
+    };
+    let (slice, band) = (slice.loops(), band.loops());
+    let regions = if slab.is_some() {
+        overlay_rings(&slice, &band, rule)
+    } else {
+        overlay_rings(&band, &[], rule)
+    };
+    Ok(region::open(&regions, SLIVER_M))
+}
+
+/// Adds the projection of `poly` counter-clockwise, unless it has (almost) no area.
+fn add_normalised(chain: &mut WindingChain, poly: &[DVec3]) {
+    if poly.len() < 3 {
+        return;
+    }
+    let a = projected_area(poly);
+    if a.abs() < MIN_TRIANGLE_AREA || !a.is_finite() {
+        return;
+    }
+    if a > 0.0 {
+        chain.add(poly.iter().map(|p| p.truncate()));
+    } else {
+        chain.add(poly.iter().rev().map(|p| p.truncate()));
+    }
+}
+
+/// The signed area of `poly` projected on XY (counter-clockwise positive).
+fn projected_area(poly: &[DVec3]) -> f64 {
+    let o = poly[0].truncate();
+    let n = poly.len();
+    (0..n)
+        .map(|i| (poly[i].truncate() - o).perp_dot(poly[(i + 1) % n].truncate() - o))
+        .sum::<f64>()
+        / 2.0
+}
+
+fn z_range(poly: &[DVec3]) -> (f64, f64) {
+    poly.iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+            (lo.min(p.z), hi.max(p.z))
+        })
+}
+
+/// The convex hull of what `mesh` has inside `slab` (of all of it for `None`), as a region;
+/// empty when that has no area.
+fn hull_in(mesh: &Mesh, slab: Option<(f64, f64)>) -> Vec<Region> {
+    let mut points: Vec<DVec2> = Vec::new();
+    let (mut a, mut b) = (Vec::with_capacity(8), Vec::with_capacity(8));
+    for t in &mesh.triangles {
+        let tri = t.map(|i| mesh.positions[i as usize]);
+        let Some((z_min, z_max)) = slab else {
+            points.extend(tri.iter().map(|p| p.truncate()));
+            continue;
+        };
+        let (lo, hi) = z_range(&tri);
+        if hi < z_min || lo > z_max {
+            continue;
+        }
+        clip(&tri, z_min, true, &mut a);
+        clip(&a, z_max, false, &mut b);
+        points.extend(b.iter().map(|p| p.truncate()));
+    }
+    Region::from_ring(polygon::convex_hull(&points))
+        .into_iter()
+        .collect()
 }
 
 /// True when the mesh encloses volumes, as far as sections need: its triangles' projections on
@@ -90,50 +315,35 @@ pub fn is_closed(mesh: &Mesh) -> bool {
     total > 0.0 && signed.abs() <= 1e-6 * total
 }
 
-/// The part of a convex polygon with `z >= z`.
-fn clip_below(poly: &[DVec3], z: f64) -> Vec<DVec3> {
-    clip(poly, |p| p.z - z)
-}
-
-/// The part of a convex polygon with `z <= z`.
-fn clip_above(poly: &[DVec3], z: f64) -> Vec<DVec3> {
-    clip(poly, |p| z - p.z)
-}
-
-/// Sutherland-Hodgman against one plane: keeps points where `side >= 0`.
-fn clip(poly: &[DVec3], side: impl Fn(DVec3) -> f64) -> Vec<DVec3> {
+/// The part of the convex polygon `poly` above the plane at height `z` (`keep_above`) or below
+/// it, into `out` (points on the plane are kept). Sutherland-Hodgman, but an edge crossing the
+/// plane is cut at a point computed from its ends in a fixed order, so the two triangles
+/// sharing an edge cut it at the same point, to the last bit.
+fn clip(poly: &[DVec3], z: f64, keep_above: bool, out: &mut Vec<DVec3>) {
+    out.clear();
+    let kept = |p: DVec3| if keep_above { p.z >= z } else { p.z <= z };
     let n = poly.len();
-    let mut out = Vec::with_capacity(n + 1);
     for i in 0..n {
         let (a, b) = (poly[i], poly[(i + 1) % n]);
-        let (sa, sb) = (side(a), side(b));
-        if sa >= 0.0 {
+        let (ka, kb) = (kept(a), kept(b));
+        if ka {
             out.push(a);
         }
-        if (sa >= 0.0) != (sb >= 0.0) {
-            let t = sa / (sa - sb);
-            out.push(a + (b - a) * t);
+        if ka != kb {
+            out.push(crossing(a, b, z));
         }
     }
-    out
 }
 
-/// The polygon projected on XY, counter-clockwise when `normalise`, else as it comes (up-facing
-/// triangles are counter-clockwise); `None` when it has (almost) no area.
-fn projected(poly: &[DVec3], normalise: bool) -> Option<Vec<[f64; 2]>> {
-    if poly.len() < 3 {
-        return None;
-    }
-    let flat: Vec<DVec2> = poly.iter().map(|p| p.truncate()).collect();
-    let a = polygon::signed_area(&flat);
-    if a.abs() < MIN_TRIANGLE_AREA || !a.is_finite() {
-        return None;
-    }
-    let mut c: Vec<[f64; 2]> = flat.iter().map(|p| [p.x, p.y]).collect();
-    if normalise && a < 0.0 {
-        c.reverse();
-    }
-    Some(c)
+/// Where the segment `a`-`b` (one end strictly on each side) meets the plane at height `z`.
+fn crossing(a: DVec3, b: DVec3, z: f64) -> DVec3 {
+    let (lo, hi) = if (a.z, a.x, a.y) < (b.z, b.x, b.y) {
+        (a, b)
+    } else {
+        (b, a)
+    };
+    let t = (z - lo.z) / (hi.z - lo.z);
+    DVec3::new(lo.x + (hi.x - lo.x) * t, lo.y + (hi.y - lo.y) * t, z)
 }
 
 #[cfg(test)]
@@ -209,6 +419,144 @@ mod tests {
         top.triangles.drain(0..2);
         assert!(!is_closed(&top));
         assert!(mesh_section(&top, 0.05, 1.0).is_empty());
+    }
+
+    /// A closed surface of revolution about the z axis through `profile` (points (radius, z)
+    /// from bottom to top, radius 0 at the poles), `slices` around; faces outwards.
+    fn revolved(profile: &[(f64, f64)], slices: usize, closed_loop: bool) -> Mesh {
+        let n = profile.len();
+        let mut m = Mesh::default();
+        for &(r, z) in profile {
+            for k in 0..slices {
+                let a = std::f64::consts::TAU * k as f64 / slices as f64;
+                m.positions.push(DVec3::new(r * a.cos(), r * a.sin(), z));
+            }
+        }
+        let at = |i: usize, k: usize| ((i % n) * slices + k % slices) as u32;
+        let rows = if closed_loop { n } else { n - 1 };
+        for i in 0..rows {
+            for k in 0..slices {
+                let (a, b, c, d) = (at(i, k), at(i, k + 1), at(i + 1, k + 1), at(i + 1, k));
+                m.triangles.push([a, b, c]);
+                m.triangles.push([a, c, d]);
+            }
+        }
+        // Degenerate triangles at the poles have no area and no effect.
+        m
+    }
+
+    /// A UV sphere of radius `r` about the origin with about `2 * stacks * slices` triangles.
+    fn sphere(r: f64, stacks: usize, slices: usize) -> Mesh {
+        let profile: Vec<(f64, f64)> = (0..=stacks)
+            .map(|i| {
+                let t = std::f64::consts::PI * (i as f64 / stacks as f64 - 0.5);
+                (r * t.cos(), r * t.sin())
+            })
+            .collect();
+        revolved(&profile, slices, false)
+    }
+
+    /// A torus about the z axis: tube radius `r` at distance `big` from the axis.
+    fn torus(big: f64, r: f64, around: usize, slices: usize) -> Mesh {
+        // The tube's profile counter-clockwise seen from -y (outwards faces).
+        let profile: Vec<(f64, f64)> = (0..around)
+            .map(|i| {
+                let t = std::f64::consts::TAU * i as f64 / around as f64;
+                (big + r * t.cos(), r * t.sin())
+            })
+            .collect();
+        revolved(&profile, slices, true)
+    }
+
+    fn close(got: f64, want: f64, rel: f64) {
+        assert!(
+            (got - want).abs() <= rel * want,
+            "area {got}, analytic {want} (relative error {:.4})",
+            (got - want).abs() / want
+        );
+    }
+
+    #[test]
+    fn dense_solids_section_to_their_analytic_outlines() {
+        use std::f64::consts::PI;
+        // 2 x 125 x 200 = 50,000 triangles.
+        let s = sphere(1.0, 125, 200);
+        assert_eq!(s.triangles.len(), 50_000);
+        assert!(is_closed(&s));
+        assert!((s.volume() - 4.0 / 3.0 * PI).abs() < 0.01);
+        // A band around the equator: the equator's disk (the surfaces inside the band).
+        let r = mesh_section(&s, -0.2, 0.5);
+        assert_eq!(r.len(), 1);
+        assert!(r[0].holes.is_empty());
+        close(total_area(&r), PI, 0.01);
+        // A band above the equator: the slice at its bottom, radius sqrt(1 - 0.3^2).
+        let r = mesh_section(&s, 0.3, 0.6);
+        assert_eq!(r.len(), 1);
+        close(total_area(&r), PI * 0.91, 0.01);
+        assert!(mesh_section(&s, 1.01, 2.0).is_empty());
+        // Only the upper half (an open dome): the surface inside the band only, an annulus
+        // between the radii at 0.6 and 0.3.
+        let mut dome = s.clone();
+        dome.triangles
+            .retain(|t| t.iter().all(|&i| s.positions[i as usize].z >= 0.0));
+        assert!(!is_closed(&dome));
+        let r = mesh_section(&dome, 0.3, 0.6);
+        assert_eq!(r.len(), 1);
+        assert_eq!(r[0].holes.len(), 1);
+        close(total_area(&r), PI * (0.91 - 0.64), 0.01);
+        // A torus: an annulus through its middle, a narrower one in its upper part.
+        let t = torus(2.0, 0.5, 100, 250);
+        assert_eq!(t.triangles.len(), 50_000);
+        assert!(is_closed(&t));
+        let r = mesh_section(&t, -0.1, 0.2);
+        assert_eq!(r.len(), 1);
+        assert_eq!(r[0].holes.len(), 1);
+        close(total_area(&r), PI * (2.5f64.powi(2) - 1.5f64.powi(2)), 0.01);
+        let r = mesh_section(&t, 0.3, 0.4);
+        assert_eq!(r[0].holes.len(), 1);
+        close(total_area(&r), PI * (2.4f64.powi(2) - 1.6f64.powi(2)), 0.01);
+        // Its whole shadow: the widest annulus.
+        close(
+            total_area(&mesh_shadow(&t)),
+            PI * (2.5f64.powi(2) - 1.5f64.powi(2)),
+            0.01,
+        );
+    }
+
+    #[test]
+    fn a_section_past_its_bound_gives_a_hull_that_holds_it() {
+        let s = sphere(1.0, 40, 60);
+        let exact = mesh_section(&s, 0.3, 0.6);
+        let bounds = SectionBounds {
+            max_edges: 10,
+            ..SectionBounds::default()
+        };
+        let cut = mesh_section_within(&s, 0.3, 0.6, &bounds).unwrap_err();
+        assert!(matches!(
+            cut.limit,
+            SectionLimit::Edges { edges, limit: 10 } if edges >= 60
+        ));
+        assert_eq!(cut.outline.len(), 1);
+        let hull = &cut.outline[0];
+        // (Up to the 0.1 µm the section's points are merged on.)
+        assert!(hull.area() >= total_area(&exact) - 1e-6);
+        assert!(exact[0]
+            .outer
+            .iter()
+            .all(|p| hull.contains(*p) || polygon::distance_to_boundary(&hull.outer, *p) < 1e-6));
+        // Within the default bounds nothing is cut off.
+        assert_eq!(
+            mesh_section_within(&s, 0.3, 0.6, &SectionBounds::default()).unwrap(),
+            exact
+        );
+        // A time limit of zero: given up at once.
+        let now = SectionBounds {
+            time_limit_s: 0.0,
+            ..SectionBounds::default()
+        };
+        let cut = mesh_shadow_within(&s, &now).unwrap_err();
+        assert_eq!(cut.limit, SectionLimit::Time { seconds: 0.0 });
+        assert!((cut.outline[0].area() - total_area(&mesh_shadow(&s))).abs() < 1e-5);
     }
 
     #[test]

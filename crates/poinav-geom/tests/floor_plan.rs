@@ -368,6 +368,7 @@ fn the_band_decides_what_is_in_the_way() {
     let high = PlanOptions {
         band_min_m: 3.5,
         band_max_m: 4.0,
+        ..PlanOptions::default()
     };
     let plans = floor_plans(&model, &high);
     assert_eq!(plans[0].obstacles().count(), 0);
@@ -376,6 +377,7 @@ fn the_band_decides_what_is_in_the_way() {
     let lintel = PlanOptions {
         band_min_m: 2.2,
         band_max_m: 2.5,
+        ..PlanOptions::default()
     };
     let plans = floor_plans(&model, &lintel);
     let door = &floor_plans(&model, &PlanOptions::default())[0].doors[0];

@@ -19,6 +19,10 @@ pub enum ObstacleKind {
     DoorLeaf,
     /// Stairs and ramps drawn as obstacles for profiles that cannot use them.
     Transition,
+    /// An element whose geometry could only be bounded, not read (in IFC: its section reached
+    /// a bound): the rings hold it, but what is free inside them is not known. Unknown in
+    /// maps, never free; solid to sensors.
+    Unknown,
 }
 
 /// Something a robot cannot pass through.

@@ -31,7 +31,8 @@ pub enum CellState {
     Free = 0,
     /// An obstacle (walls, closed doors, furniture by option, stairs).
     Occupied = 1,
-    /// Outside the building, or furniture by option.
+    /// Outside the building, furniture by option, or an element only bounded
+    /// ([`ObstacleKind::Unknown`]).
     Unknown = 2,
 }
 
@@ -357,13 +358,14 @@ impl OccupancyGrid {
         for o in &floor.obstacles {
             let state = match o.kind {
                 ObstacleKind::Furniture => furniture_state,
+                ObstacleKind::Unknown => CellState::Unknown,
                 ObstacleKind::Structure | ObstacleKind::DoorLeaf | ObstacleKind::Transition => {
                     CellState::Occupied
                 }
             };
             for ring in &o.rings {
                 paint(width, height, origin, res, ring, |i| {
-                    // Unknown furniture does not erase walls under it.
+                    // Unknown furniture (or element) does not erase walls under it.
                     if state == CellState::Occupied || cells[i] != CellState::Occupied {
                         cells[i] = state;
                     }

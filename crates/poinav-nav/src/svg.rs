@@ -142,6 +142,7 @@ pub fn audit_svg(
             ObstacleKind::Furniture => ("#8d6e4f", 0.7),
             ObstacleKind::DoorLeaf => ("#a0a0a0", 0.8),
             ObstacleKind::Transition => ("#b59a6a", 0.9),
+            ObstacleKind::Unknown => ("#9e9e9e", 0.6),
         };
         let d: Vec<String> = o.rings.iter().map(|r| view.path(r)).collect();
         let _ = writeln!(

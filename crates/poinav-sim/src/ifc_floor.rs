@@ -7,7 +7,7 @@ use std::collections::{BTreeMap, HashMap};
 
 use poinav_geom::{
     floor_plans, floor_plans_with_meshes, mesh_model, FloorPlan, ModelMeshes, PlanItemKind,
-    PlanOptions,
+    PlanOptions, PlanSource,
 };
 use poinav_ifc::Model;
 use poinav_nav::{Floor, FloorDoor, FloorObstacle, FloorZone, ObstacleKind};
@@ -93,6 +93,12 @@ pub fn floor_from_plan(plan: &FloorPlan, classification: &Classification) -> Flo
                 .collect::<Vec<_>>()
         };
         let kind = match item.kind {
+            // Only bounded (its section reached a bound): unknown, never free.
+            k if item.source == PlanSource::Outline
+                && (k.is_obstacle() || matches!(k, PlanItemKind::Stair | PlanItemKind::Ramp)) =>
+            {
+                ObstacleKind::Unknown
+            }
             PlanItemKind::Wall
             | PlanItemKind::Column
             | PlanItemKind::Obstacle

@@ -130,7 +130,9 @@ impl PoiDb {
         for o in &floor.obstacles {
             let (category, poi_type) = match o.kind {
                 ObstacleKind::Structure => (Category::Structural, PoiType::BoundaryElement),
-                ObstacleKind::Furniture => (Category::ObjectBased, PoiType::FixedObject),
+                ObstacleKind::Furniture | ObstacleKind::Unknown => {
+                    (Category::ObjectBased, PoiType::FixedObject)
+                }
                 ObstacleKind::DoorLeaf | ObstacleKind::Transition => {
                     (Category::Structural, PoiType::TransitionElement)
                 }

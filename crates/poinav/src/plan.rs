@@ -49,6 +49,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         &PlanOptions {
             band_min_m: args.band_min,
             band_max_m: args.band_max,
+            ..PlanOptions::default()
         },
         &crate::progress::tick,
     );
