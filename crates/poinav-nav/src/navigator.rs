@@ -84,8 +84,12 @@ impl<'a> Navigator<'a> {
         let mut topology = Topology::build(building);
         let status = topology.statuses(building, profile);
         let mut floors = Vec::with_capacity(building.floors.len());
-        for floor in &building.floors {
-            let grid = NavGrid::build(floor, profile, &options.grid, &options.inflation)?;
+        for (fi, floor) in building.floors.iter().enumerate() {
+            let grid_options = GridOptions {
+                at_ground: building.at_ground(fi),
+                ..options.grid.clone()
+            };
+            let grid = NavGrid::build(floor, profile, &grid_options, &options.inflation)?;
             let zone_speed = floor
                 .zones
                 .iter()
