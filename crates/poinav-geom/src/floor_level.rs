@@ -86,8 +86,8 @@ fn main_level(elevation: f64, candidates: &[(f64, f64)]) -> Option<f64> {
 
 /// The walking level of a storey at `elevation` whose products are `members` (their meshes):
 /// the top of its floor slabs ([`is_floor_slab`]) with the most area, else the bottom of its
-/// spaces with the most area, when that is more than [`LEVEL_AGREEMENT_M`] from the
-/// elevation; else the elevation.
+/// spaces with the most area when that is above the elevation, when that is more than
+/// [`LEVEL_AGREEMENT_M`] from the elevation; else the elevation.
 pub fn walking_level<'m>(
     elevation: f64,
     members: impl IntoIterator<Item = (Entity<'m>, &'m ElementMesh)>,
@@ -112,8 +112,11 @@ pub fn walking_level<'m>(
             }
         })
     };
+    // Spaces whose bottom is below the elevation are often drawn from the slab's bottom: only
+    // a bottom above it says where the floor is.
+    let spaces_level = main_level(elevation, &spaces).filter(|z| *z > elevation);
     pick(main_level(elevation, &slabs), LevelFrom::FloorSlabs)
-        .or_else(|| pick(main_level(elevation, &spaces), LevelFrom::Spaces))
+        .or_else(|| pick(spaces_level, LevelFrom::Spaces))
         .unwrap_or((elevation, LevelFrom::StoreyElevation))
 }
 
