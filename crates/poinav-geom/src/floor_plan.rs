@@ -33,6 +33,7 @@ use crate::door_passage::{
 };
 use crate::element_mesh::{meshed_products, openings_of};
 use crate::error::GeomError;
+use crate::floor_level::{floor_voids, is_floor_slab, walking_level, LevelFrom};
 use crate::footprint::footprint_of;
 use crate::mesh::ElementMesh;
 use crate::placement::PlacementCache;
@@ -85,6 +86,8 @@ pub enum PlanSource {
     /// [`crate::part_hulls::DENSE_TRIANGLES`] triangles), drawn conservatively
     /// ([`crate::part_hulls`]); it holds the exact section.
     PartHulls,
+    /// The holes of a floor slab at the storey's walking level (a stairwell, a shaft): a drop.
+    Void,
 }
 
 /// One product's regions of one kind.
@@ -139,8 +142,13 @@ pub struct FloorPlan {
     pub storey_name: Option<String>,
     /// Its GlobalId.
     pub storey_global_id: Option<String>,
-    /// The z of its floor, world metres: the storey's placement, else its Elevation.
+    /// The z of its floor, world metres: its walking level ([`crate::floor_level`]), which is
+    /// the storey's elevation unless its floor slabs (or spaces) say otherwise.
     pub elevation_m: f64,
+    /// The storey's elevation as the model gives it: its placement, else its Elevation.
+    pub storey_elevation_m: f64,
+    /// Where `elevation_m` comes from.
+    pub level_from: LevelFrom,
     /// The band cut, world z metres.
     pub band: (f64, f64),
     /// Items in file order of their products (a door's frame, leaf and opening together).
@@ -295,6 +303,39 @@ pub fn floor_plans_with_progress(
         }
     }
     let ticker = crate::progress::Ticker::new(members.iter().map(Vec::len).sum(), progress);
+    // Each storey's walking level, and the floor slabs whose holes are drops on the storeys
+    // above the lowest.
+    let walking: Vec<(f64, LevelFrom)> = levels
+        .iter()
+        .zip(&members)
+        .map(|((_, elevation), products)| {
+            walking_level(
+                *elevation,
+                products
+                    .iter()
+                    .filter_map(|p| by_id.get(&p.id()).map(|m| (*p, *m))),
+            )
+        })
+        .collect();
+    let lowest = walking
+        .iter()
+        .map(|(z, _)| *z)
+        .fold(f64::INFINITY, f64::min);
+    let floor_slabs: Vec<(Entity<'_>, &ElementMesh)> = meshes
+        .elements
+        .iter()
+        .filter_map(|m| model.entity(m.product).map(|e| (e, m)))
+        .filter(|(e, _)| is_floor_slab(*e))
+        .collect();
+    // From here on a storey's z is its walking level.
+    let storey_z: Vec<(EntityId, f64, LevelFrom)> = levels
+        .iter()
+        .zip(&walking)
+        .map(|((s, z), (_, from))| (s.id(), *z, *from))
+        .collect();
+    for (l, (z, _)) in levels.iter_mut().zip(&walking) {
+        l.1 = *z;
+    }
     levels
         .iter()
         .zip(members)
@@ -315,11 +356,18 @@ pub fn floor_plans_with_progress(
                     },
                 )
                 .collect();
+            let (_, storey_elevation, level_from) = storey_z
+                .iter()
+                .copied()
+                .find(|(id, _, _)| *id == storey.id())
+                .unwrap_or((storey.id(), elevation, LevelFrom::StoreyElevation));
             let mut plan = FloorPlan {
                 storey: storey.id(),
                 storey_name: storey.name(),
                 storey_global_id: storey.global_id(),
                 elevation_m: elevation,
+                storey_elevation_m: storey_elevation,
+                level_from,
                 band,
                 items: Vec::new(),
                 doors: Vec::new(),
@@ -333,10 +381,35 @@ pub fn floor_plans_with_progress(
                 plan.openings.extend(d.openings);
                 plan.problems.extend(d.problems);
             }
+            void_items(&mut plan, elevation > lowest + 1.0, &floor_slabs);
             plan.bounds = region::bounds_of(plan.items.iter().flat_map(|i| i.regions.iter()));
             plan
         })
         .collect()
+}
+
+/// Adds the holes in the floor at `plan`'s level (stairwells, shafts: drops) as obstacle items
+/// of the slabs around them, on a storey `above` the lowest.
+fn void_items<'m>(
+    plan: &mut FloorPlan,
+    above: bool,
+    floor_slabs: &[(Entity<'m>, &'m ElementMesh)],
+) {
+    if !above {
+        return;
+    }
+    for (slab, voids) in floor_voids(plan.elevation_m, floor_slabs.iter().copied()) {
+        plan.items.push(PlanItem {
+            product: slab.id(),
+            global_id: slab.global_id().unwrap_or_default(),
+            class: slab.type_name().to_string(),
+            name: slab.name(),
+            long_name: None,
+            kind: PlanItemKind::Obstacle,
+            regions: voids,
+            source: PlanSource::Void,
+        });
+    }
 }
 
 /// The highest storey whose floor is at or below `z` (1 cm tolerance), else the lowest.

@@ -46,6 +46,7 @@ pub mod element_mesh;
 mod error;
 pub mod extrusion;
 pub mod face_set;
+pub mod floor_level;
 pub mod floor_plan;
 pub mod footprint;
 pub mod half_space;

@@ -158,6 +158,9 @@ fn status_index(s: AccessibilityStatus) -> usize {
 pub struct AuditReport {
     /// Storey names.
     pub floors: Vec<String>,
+    /// Per storey (as `floors`, when known): its elevation, the walking level used and where
+    /// that comes from, and whether it is at ground level (where entrances are).
+    pub levels: Vec<crate::level::FloorLevel>,
     /// What limits the audit ([`Building::diagnostics`]: storeys without spaces).
     pub warnings: Vec<String>,
     /// Per profile, in the order given.
@@ -177,6 +180,7 @@ pub fn audit(
     }
     Ok(AuditReport {
         floors: building.floors.iter().map(|f| f.name.clone()).collect(),
+        levels: building.levels.clone(),
         warnings: building.diagnostics(),
         profiles: out,
     })

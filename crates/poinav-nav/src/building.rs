@@ -9,6 +9,7 @@ use poinav_poi::{
 use serde::{Deserialize, Serialize};
 
 use crate::floor::{Floor, FloorDoor};
+use crate::level::FloorLevel;
 
 /// Every storey and what connects them.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
@@ -17,6 +18,11 @@ pub struct Building {
     pub floors: Vec<Floor>,
     /// Stairs, ramps and lifts between storeys.
     pub connections: Vec<VerticalConnection>,
+    /// Per storey (as `floors`): its walking level, where that comes from and whether it is
+    /// at ground level. Empty (or shorter): every storey missing counts as at ground level
+    /// with its elevation from the storey (hand-built buildings, one-storey floors).
+    #[serde(default)]
+    pub levels: Vec<FloorLevel>,
 }
 
 impl Building {
@@ -25,7 +31,14 @@ impl Building {
         Building {
             floors: vec![floor],
             connections: Vec::new(),
+            levels: Vec::new(),
         }
+    }
+
+    /// True when storey `floor` is at ground level ([`FloorLevel::at_ground`]), where a door
+    /// with one side outside is an entrance; storeys without a level are.
+    pub fn at_ground(&self, floor: usize) -> bool {
+        self.levels.get(floor).is_none_or(|l| l.at_ground)
     }
 
     /// The index of the storey with this name.
@@ -292,12 +305,14 @@ mod tests {
         let none = Building {
             floors: vec![],
             connections: vec![],
+            levels: vec![],
         };
         assert!(none.diagnostics()[0]
             .starts_with("nothing to navigate: the model has no storeys, no spaces"));
         let mut two = Building {
             floors: vec![empty("L1"), empty("L2")],
             connections: vec![],
+            levels: vec![],
         };
         assert!(two.diagnostics()[0]
             .starts_with("nothing to navigate: none of its 2 storeys has spaces"));

@@ -118,18 +118,22 @@ pub struct DoorSides {
     /// courtyard), not outside: no entrance. Set by [`crate::Navigator`] from
     /// [`crate::grid::GridDoor::walled_in`].
     pub walled_in: bool,
+    /// Its storey is not at ground level ([`Building::at_ground`]): its side without a zone
+    /// is a balcony, a terrace, a light well or a drop, not the way in from outside: no
+    /// entrance.
+    pub off_ground: bool,
 }
 
 impl DoorSides {
     /// True for a door with a zone on one side only whose other side is outside: an entrance
     /// (never a doorway, nor a door into a walled-in room without a space).
     pub fn exterior(&self) -> bool {
-        !self.doorless && !self.walled_in && self.zones[0].is_some() != self.zones[1].is_some()
+        self.outside_side().is_some()
     }
 
     /// The side (-1 or +1 along the frame's normal) that leads outside, for an exterior door.
     pub fn outside_side(&self) -> Option<f64> {
-        if self.doorless || self.walled_in {
+        if self.doorless || self.walled_in || self.off_ground {
             return None;
         }
         match self.zones {
@@ -188,8 +192,10 @@ pub fn frame_zones(floor: &Floor, f: &crate::polygon::PassageFrame) -> [Option<u
 
 /// The zones on the two sides of a door (see [`DoorSides::zones`]): from the spaces the door
 /// bounds ([`crate::FloorDoor::spaces`]) where given and present on the floor, each on the
-/// side where geometry finds it or else nearer to it, and nothing else (one space: an
-/// entrance); otherwise from geometry alone (the zones just beyond the passage's faces).
+/// side where geometry finds it or else nearer to it; a side the spaces leave empty (a
+/// one-sided boundary, as many exporters write) takes the zone geometry finds beyond that
+/// face, so only a door with no space behind it has a side outside; otherwise from geometry
+/// alone (the zones just beyond the passage's faces).
 pub fn door_zones(floor: &Floor, door: usize) -> [Option<usize>; 2] {
     let geometric = geometric_door_zones(floor, door);
     let d = &floor.doors[door];
@@ -250,6 +256,14 @@ pub fn door_zones(floor: &Floor, door: usize) -> [Option<usize>; 2] {
             break;
         };
         sides[s] = Some(z);
+    }
+    // A side still empty: another space geometry finds beyond that face (never the space on
+    // the other side again).
+    for s in 0..2 {
+        let other = sides[1 - s].map(|z| floor.zones[z].id.as_str());
+        if sides[s].is_none() {
+            sides[s] = geometric[s].filter(|&z| Some(floor.zones[z].id.as_str()) != other);
+        }
     }
     sides
 }
@@ -338,6 +352,7 @@ impl Topology {
                     from_spaces,
                     doorless: floor.doors[k].doorless,
                     walled_in: false,
+                    off_ground: !building.at_ground(fi),
                 });
             }
         }
@@ -580,7 +595,16 @@ impl Topology {
             .floors
             .iter()
             .enumerate()
-            .map(|(i, f)| serde_json::json!({"index": i, "name": f.name, "elevation_m": f.elevation_m}))
+            .map(|(i, f)| {
+                let mut v =
+                    serde_json::json!({"index": i, "name": f.name, "elevation_m": f.elevation_m});
+                if let Some(l) = building.levels.get(i) {
+                    v["storey_elevation_m"] = serde_json::json!(l.storey_elevation_m);
+                    v["level_from"] = serde_json::json!(l.from);
+                    v["at_ground"] = serde_json::json!(l.at_ground);
+                }
+                v
+            })
             .collect();
         let nodes: Vec<serde_json::Value> = self
             .nodes

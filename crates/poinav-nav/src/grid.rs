@@ -70,6 +70,11 @@ pub struct GridOptions {
     /// unknown). An open door joining no zone (models without spaces) gets one on both sides.
     /// The rest of the outside stays unknown.
     pub entrance_apron_m: f64,
+    /// The storey is at ground level (default), so a door with a zone on one side only may be
+    /// an entrance and gets an apron; `false` (set per storey by [`crate::Navigator`] from
+    /// [`crate::Building::at_ground`]): such a door leads onto a balcony or a drop and gets
+    /// none.
+    pub at_ground: bool,
 }
 
 impl Default for GridOptions {
@@ -82,6 +87,7 @@ impl Default for GridOptions {
             doors_by_status: true,
             fill_enclosed: true,
             entrance_apron_m: 1.0,
+            at_ground: true,
         }
     }
 }
@@ -184,7 +190,8 @@ fn paint(
 /// exterior door (a zone on one side only) that is open for `profile`, outside, a rectangle as
 /// wide as its passage and as deep as the apron; a door that joins no zone at all (a model
 /// without spaces) gets one on each side, so its passage can be planned through and checked.
-/// Doorways ([`crate::FloorDoor::doorless`]) with a zone on one side only get none. Each ring
+/// Doorways ([`crate::FloorDoor::doorless`]) with a zone on one side only get none, nor do
+/// doors of storeys not at ground level ([`GridOptions::at_ground`]). Each ring
 /// comes with the index of its door.
 pub fn entrance_aprons(
     floor: &Floor,
@@ -207,7 +214,7 @@ pub fn entrance_aprons(
         };
         let sides: &[f64] = match crate::graph::door_zones(floor, k) {
             // A doorway with a zone on one side leads into the undescribed, not outside.
-            [None, Some(_)] | [Some(_), None] if d.doorless => continue,
+            [None, Some(_)] | [Some(_), None] if d.doorless || !options.at_ground => continue,
             [None, Some(_)] => &[-1.0],
             [Some(_), None] => &[1.0],
             [None, None] => &[-1.0, 1.0],

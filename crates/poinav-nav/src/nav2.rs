@@ -214,6 +214,7 @@ pub fn cropped_building(building: &Building, options: &Nav2Options) -> Building 
             .map(|f| crate::extent::cropped(f, margin))
             .collect(),
         connections: building.connections.clone(),
+        levels: building.levels.clone(),
     }
 }
 

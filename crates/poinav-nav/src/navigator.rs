@@ -98,8 +98,12 @@ impl<'a> Navigator<'a> {
         let mut floors = Vec::with_capacity(building.floors.len());
         let n = building.floors.len();
         progress(Phase::Rasterising, 0, n);
-        for floor in &building.floors {
-            let grid = NavGrid::build(floor, profile, &options.grid, &options.inflation)?;
+        for (fi, floor) in building.floors.iter().enumerate() {
+            let grid_options = GridOptions {
+                at_ground: building.at_ground(fi),
+                ..options.grid.clone()
+            };
+            let grid = NavGrid::build(floor, profile, &grid_options, &options.inflation)?;
             let zone_speed = floor
                 .zones
                 .iter()

@@ -259,6 +259,7 @@ mod tests {
                 ),
             ],
             connections: Vec::new(),
+            levels: Vec::new(),
         }
     }
 

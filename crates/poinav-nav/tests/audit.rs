@@ -190,6 +190,7 @@ fn two_storeys(lift: bool) -> Building {
     Building {
         floors: vec![demo(), first],
         connections,
+        levels: vec![],
     }
 }
 

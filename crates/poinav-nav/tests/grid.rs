@@ -217,6 +217,7 @@ fn narrow_door_in_a_thick_wall_and_an_empty_storey() {
             floor.clone(),
         ],
         connections: vec![],
+        levels: vec![],
     };
     let topo = Topology::build(&building);
     let mut sides = topo.door(1, 0).unwrap().zones;

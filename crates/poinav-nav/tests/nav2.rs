@@ -498,6 +498,7 @@ fn a_site_is_cropped_away_and_a_storey_with_nothing_to_navigate_is_skipped() {
     let building = Building {
         floors: vec![on_site, roof],
         connections: vec![],
+        levels: vec![],
     };
     let dir = tempfile::tempdir().unwrap();
     let summary = write_bundle(&building, &profile, &Nav2Options::default(), dir.path()).unwrap();

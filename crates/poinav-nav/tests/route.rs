@@ -292,6 +292,7 @@ fn two_storeys(with_lift: bool) -> Building {
     Building {
         floors: vec![ground, first],
         connections,
+        levels: vec![],
     }
 }
 

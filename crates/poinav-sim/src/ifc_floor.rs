@@ -5,12 +5,13 @@
 
 use std::collections::{BTreeMap, HashMap};
 
+use poinav_geom::floor_level::LevelFrom;
 use poinav_geom::{
     floor_plans, floor_plans_with_meshes, mesh_model, FloorPlan, ModelMeshes, PlanItemKind,
     PlanOptions, PlanSource,
 };
 use poinav_ifc::Model;
-use poinav_nav::{Floor, FloorDoor, FloorObstacle, FloorZone, ObstacleKind};
+use poinav_nav::{Floor, FloorDoor, FloorObstacle, FloorZone, LevelSource, ObstacleKind};
 use poinav_poi::{AccessibilityStatus, Classification, Classified, Role};
 
 use crate::vertical::{vertical_connections, Dropped};
@@ -257,11 +258,44 @@ pub fn building_from_plans(
         .collect();
     let clearance = (classification.profile.width_m / 2.0).max(0.25);
     let vertical = vertical_connections(model, meshes, &floors, clearance);
+    let levels = floor_levels(&plans, &floors);
+    let mut floors = floors;
+    // A stair's or ramp's shadow is in the way on every storey it rises to, not only the one
+    // it stands on (a drop where the floor slab has no hole modelled).
+    for (floor, obstacle) in vertical.shadows {
+        floors[floor].obstacles.push(obstacle);
+    }
     (
         poinav_nav::Building {
             floors,
             connections: vertical.connections,
+            levels,
         },
         vertical.dropped,
     )
+}
+
+/// Each storey's level from its plan: the storey's elevation, the walking level and where it
+/// comes from, and whether it is at ground level ([`poinav_nav::level::ground_levels`]: the
+/// storeys with spaces or doors decide).
+pub fn floor_levels(plans: &[FloorPlan], floors: &[Floor]) -> Vec<poinav_nav::FloorLevel> {
+    let used: Vec<(f64, bool)> = floors
+        .iter()
+        .map(|f| (f.elevation_m, !f.zones.is_empty() || !f.doors.is_empty()))
+        .collect();
+    let ground = poinav_nav::level::ground_levels(&used);
+    plans
+        .iter()
+        .zip(ground)
+        .map(|(p, at_ground)| poinav_nav::FloorLevel {
+            storey_elevation_m: p.storey_elevation_m,
+            walking_level_m: p.elevation_m,
+            from: match p.level_from {
+                LevelFrom::StoreyElevation => LevelSource::StoreyElevation,
+                LevelFrom::FloorSlabs => LevelSource::FloorSlabs,
+                LevelFrom::Spaces => LevelSource::Spaces,
+            },
+            at_ground,
+        })
+        .collect()
 }

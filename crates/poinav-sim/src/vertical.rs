@@ -22,7 +22,7 @@ use glam::{DVec2, DVec3};
 use poinav_geom::region::{self, Region};
 use poinav_geom::{polygon, ElementMesh, Footprint, ModelMeshes};
 use poinav_ifc::{Entity, EntityId, Model};
-use poinav_nav::{ConnectionKind, Floor, Landing, VerticalConnection};
+use poinav_nav::{ConnectionKind, Floor, FloorObstacle, Landing, ObstacleKind, VerticalConnection};
 use regex::Regex;
 
 /// How far a stair's or ramp's lowest point may be from a storey's floor (metres).
@@ -35,6 +35,9 @@ pub const LIFT_HEADROOM_M: f64 = 1.5;
 pub const FOOTPRINT_MARGIN_M: f64 = 0.3;
 /// How far a landing is searched beyond that margin, metres.
 pub const SEARCH_REACH_M: f64 = 2.0;
+/// How much further than the clearance a stair's or ramp's landing stays from obstacles, so
+/// that it is traversable in the inflated grid whatever the cells, metres.
+pub const LANDING_SLACK_M: f64 = 0.1;
 
 /// A stair, ramp or lift found in the model that connects no storeys.
 #[derive(Debug, Clone, PartialEq)]
@@ -56,6 +59,9 @@ pub struct Vertical {
     pub connections: Vec<VerticalConnection>,
     /// Stairs, ramps and lifts that connect nothing, with why.
     pub dropped: Vec<Dropped>,
+    /// The shadow of each stair and ramp on the storeys it rises to (every landing's storey
+    /// but its foot's): an obstacle there, where it stands in the stairwell (by storey index).
+    pub shadows: Vec<(usize, FloorObstacle)>,
 }
 
 /// True for a lift's name: `elevator`, `elev`, `lift`, Aufzug, Fahrstuhl, ascenseur, ascensor,
@@ -131,6 +137,7 @@ fn enum_attr<'m>(e: Entity<'m>, name: &str) -> Option<&'m str> {
 
 struct Group<'a> {
     root: EntityId,
+    class: String,
     id: String,
     name: Option<String>,
     kind: ConnectionKind,
@@ -156,6 +163,7 @@ fn stairs_and_ramps(
         };
         let g = groups.entry(root.position()).or_insert_with(|| Group {
             root: root.id(),
+            class: root.type_name().to_string(),
             id: root
                 .global_id()
                 .unwrap_or_else(|| format!("#{}", root.id())),
@@ -176,7 +184,30 @@ fn stairs_and_ramps(
     }
     for g in groups.into_values() {
         match stair_or_ramp(&g, floors, clearance_m) {
-            Ok(c) => out.connections.push(c),
+            Ok(c) => {
+                let shadow: Vec<Region> = region::union(
+                    &g.members
+                        .iter()
+                        .flat_map(|m| poinav_geom::section::mesh_shadow(&m.mesh))
+                        .collect::<Vec<_>>(),
+                );
+                let rings: Vec<Vec<DVec2>> = shadow.into_iter().map(|r| r.outer).collect();
+                if !rings.is_empty() {
+                    for l in c.landings.iter().skip(1) {
+                        out.shadows.push((
+                            l.floor,
+                            FloorObstacle {
+                                id: g.id.clone(),
+                                class: g.class.clone(),
+                                kind: ObstacleKind::Transition,
+                                rings: rings.clone(),
+                                roles: Vec::new(),
+                            },
+                        ));
+                    }
+                }
+                out.connections.push(c)
+            }
             Err(reason) => out.dropped.push(Dropped {
                 id: g.id.clone(),
                 name: g.name.clone(),
@@ -246,16 +277,31 @@ fn stair_or_ramp(
             .collect();
         (!pts.is_empty()).then(|| pts.iter().copied().sum::<DVec2>() / pts.len() as f64)
     };
-    let foot = near(e0, -0.3, 0.3)
+    // The way up at each end (the gradient of z over the first and last metre of rise), the
+    // end step's front edge and the way off: down the first steps at the foot, on along the
+    // last ones at the top.
+    // (Not the points on the floor: the bottoms of steps modelled as blocks from the floor.)
+    let foot_end = end_step(&points, e0 + 0.02, e0 + 1.0, false);
+    let top_end = end_step(&points, e1 - 1.0, e1 + 0.05, true);
+    let foot = foot_end
+        .map(|(p, _)| p)
+        .or_else(|| near(e0, -0.3, 0.3))
         .or_else(|| near(z0, 0.0, 0.3))
         .unwrap_or(hull.centroid());
-    let head = near(e1, -0.3, 0.05)
+    let head = top_end
+        .map(|(p, _)| p)
+        .or_else(|| near(e1, -0.3, 0.05))
         .or_else(|| near(z1, -0.3, 0.0))
         .unwrap_or(hull.centroid());
+    let off_foot = foot_end.map(|(_, up)| -up);
+    let off_top = top_end.map(|(_, up)| up);
     let what = g.kind.label();
     let mut landings = Vec::new();
-    for (floor, at, end) in [(bottom, foot, "foot"), (top, head, "top")] {
-        let point = landing_beside(&floors[floor], &hull.polygon, at, clearance_m, &[])
+    for (floor, at, off, end) in [
+        (bottom, foot, off_foot, "foot"),
+        (top, head, off_top, "top"),
+    ] {
+        let point = landing_off(&floors[floor], &hull.polygon, at, off, clearance_m)
             .ok_or_else(|| {
                 format!(
                     "no free spot in a zone of storey `{}` within {SEARCH_REACH_M} m of the {what}'s {end} ({:.2}, {:.2})",
@@ -309,6 +355,51 @@ fn stair_or_ramp(
     })
 }
 
+/// One end of a flight from its points with `lo <= z <= hi`: the front edge of its end step
+/// (the centre of the points furthest down the slope, or up it for the `top`, within 5 cm)
+/// and the unit way up there (the least-squares gradient of z over XY); `None` when the
+/// points do not rise in plan.
+fn end_step(points: &[DVec3], lo: f64, hi: f64, top: bool) -> Option<(DVec2, DVec2)> {
+    let pts: Vec<DVec3> = points
+        .iter()
+        .copied()
+        .filter(|p| p.z >= lo && p.z <= hi)
+        .collect();
+    if pts.len() < 3 {
+        return None;
+    }
+    let n = pts.len() as f64;
+    let mean = pts.iter().copied().sum::<DVec3>() / n;
+    let (mut cxx, mut cxy, mut cyy, mut rx, mut ry) = (0.0, 0.0, 0.0, 0.0, 0.0);
+    for p in &pts {
+        let d = *p - mean;
+        cxx += d.x * d.x;
+        cxy += d.x * d.y;
+        cyy += d.y * d.y;
+        rx += d.x * d.z;
+        ry += d.y * d.z;
+    }
+    let det = cxx * cyy - cxy * cxy;
+    if det.abs() < 1e-12 {
+        return None;
+    }
+    let grad = DVec2::new(cyy * rx - cxy * ry, cxx * ry - cxy * rx) / det;
+    // A flight rises at least 10 cm per metre.
+    if grad.length() < 0.1 {
+        return None;
+    }
+    let up = grad.normalize();
+    let key = |p: &DVec3| p.truncate().dot(up) * if top { -1.0 } else { 1.0 };
+    let edge = pts.iter().map(key).fold(f64::INFINITY, f64::min);
+    let front: Vec<DVec2> = pts
+        .iter()
+        .filter(|p| key(p) <= edge + 0.05)
+        .map(|p| p.truncate())
+        .collect();
+    let at = front.iter().copied().sum::<DVec2>() / front.len() as f64;
+    Some((at, up))
+}
+
 /// True when `p` is inside a zone of `floor` (other than the zones `except`) and at least
 /// `clearance_m` from every obstacle.
 fn free(floor: &Floor, p: DVec2, clearance_m: f64, except: &[&str]) -> bool {
@@ -329,6 +420,113 @@ fn free(floor: &Floor, p: DVec2, clearance_m: f64, except: &[&str]) -> bool {
         })
 }
 
+/// The landing at one end of a stair or ramp: a free spot on the walkable side of its end
+/// step at `from`, reached from the footprint's edge in a straight line that crosses no wall
+/// or other structure (so in the zone the stair opens onto, never behind its own wall): first
+/// straight along `off` (the way off the stair), then turning up to 75 degrees either side;
+/// without a way off known, or none free that way, in any direction from the footprint's
+/// centre as [`landing_beside`] searches, with the same straight-line rule.
+fn landing_off(
+    floor: &Floor,
+    footprint: &[DVec2],
+    from: DVec2,
+    off: Option<DVec2>,
+    clearance_m: f64,
+) -> Option<DVec2> {
+    let clearance_m = clearance_m + LANDING_SLACK_M;
+    if let Some(off) = off {
+        let mut turns = vec![0.0];
+        for k in 1..=5 {
+            let a = (15.0 * k as f64).to_radians();
+            turns.extend([a, -a]);
+        }
+        if let Some(p) = search_out(floor, footprint, from, off, &turns, clearance_m, &[], true) {
+            return Some(p);
+        }
+    }
+    let base = (from - polygon::centroid(footprint))
+        .try_normalize()
+        .unwrap_or(DVec2::X);
+    search_out(
+        floor,
+        footprint,
+        from,
+        base,
+        &all_turns(),
+        clearance_m,
+        &[],
+        true,
+    )
+}
+
+/// True when the segment `a`-`b` passes through no structure (walls, columns, door frames,
+/// holes in the floor) of `floor`, sampled every 2.5 cm.
+fn unobstructed(floor: &Floor, a: DVec2, b: DVec2) -> bool {
+    let n = ((b - a).length() / 0.025).ceil().max(1.0) as usize;
+    (0..=n).all(|k| {
+        let p = a.lerp(b, k as f64 / n as f64);
+        floor
+            .obstacles
+            .iter()
+            .filter(|o| o.kind == ObstacleKind::Structure)
+            .all(|o| o.rings.iter().all(|r| !polygon::contains(r, p)))
+    })
+}
+
+/// Turns of 0, +-15, ... +-165 and 180 degrees.
+fn all_turns() -> Vec<f64> {
+    let mut turns = vec![0.0];
+    for k in 1..=12 {
+        let a = (15.0 * k as f64).to_radians();
+        turns.push(a);
+        if k < 12 {
+            turns.push(-a);
+        }
+    }
+    turns
+}
+
+/// The first free spot going out of `footprint` from `from` along `base` turned by each of
+/// `turns` in turn (radians), at most [`SEARCH_REACH_M`] beyond [`FOOTPRINT_MARGIN_M`];
+/// with `straight`, only spots the way from the footprint's edge to which is
+/// [`unobstructed`].
+#[allow(clippy::too_many_arguments)]
+fn search_out(
+    floor: &Floor,
+    footprint: &[DVec2],
+    from: DVec2,
+    base: DVec2,
+    turns: &[f64],
+    clearance_m: f64,
+    except: &[&str],
+    straight: bool,
+) -> Option<DVec2> {
+    let outside = |p: DVec2| {
+        !polygon::contains(footprint, p)
+            && polygon::distance_to_boundary(footprint, p) >= FOOTPRINT_MARGIN_M
+    };
+    for &a in turns {
+        let d = DVec2::from_angle(a).rotate(base);
+        let mut r = 0.0;
+        while r < 20.0 && !outside(from + d * r) {
+            r += 0.05;
+        }
+        let edge = from + d * r;
+        let mut s = 0.0;
+        while s <= SEARCH_REACH_M + 1e-9 {
+            let p = edge + d * s;
+            if free(floor, p, clearance_m, except) {
+                if !straight || unobstructed(floor, edge, p) {
+                    return Some(p);
+                }
+                break;
+            }
+            s += 0.1;
+        }
+    }
+    None
+}
+
 /// A free spot outside `footprint` near `from`: first along the direction from the
 /// footprint's centroid to `from`, then turning away from it in 15 degree steps; `None` when
 /// there is none within [`SEARCH_REACH_M`] beyond [`FOOTPRINT_MARGIN_M`].
@@ -341,34 +539,16 @@ fn landing_beside(
 ) -> Option<DVec2> {
     let c = polygon::centroid(footprint);
     let base = (from - c).try_normalize().unwrap_or(DVec2::X);
-    let outside = |p: DVec2| {
-        !polygon::contains(footprint, p)
-            && polygon::distance_to_boundary(footprint, p) >= FOOTPRINT_MARGIN_M
-    };
-    let mut turns = vec![0.0];
-    for k in 1..=12 {
-        let a = (15.0 * k as f64).to_radians();
-        turns.push(a);
-        if k < 12 {
-            turns.push(-a);
-        }
-    }
-    for a in turns {
-        let d = DVec2::from_angle(a).rotate(base);
-        let mut r = 0.0;
-        while r < 20.0 && !outside(from + d * r) {
-            r += 0.05;
-        }
-        let mut s = 0.0;
-        while s <= SEARCH_REACH_M + 1e-9 {
-            let p = from + d * (r + s);
-            if free(floor, p, clearance_m, except) {
-                return Some(p);
-            }
-            s += 0.1;
-        }
-    }
-    None
+    search_out(
+        floor,
+        footprint,
+        from,
+        base,
+        &all_turns(),
+        clearance_m,
+        except,
+        false,
+    )
 }
 
 struct LiftUnit {
@@ -648,6 +828,7 @@ mod tests {
             id: "stair".into(),
             name: Some("Stair".into()),
             kind: ConnectionKind::Stair,
+            class: "IfcStair".into(),
             multi_run: false,
             members: vec![&mesh],
             flights: vec![],
