@@ -144,7 +144,6 @@ mod tests {
         Mesh {
             positions,
             triangles,
-            ..Mesh::default()
         }
     }
 
