@@ -258,7 +258,7 @@ pub fn building_from_plans(
         .collect();
     let clearance = (classification.profile.width_m / 2.0).max(0.25);
     let vertical = vertical_connections(model, meshes, &floors, clearance);
-    let levels = floor_levels(&plans, &floors);
+    let levels = floor_levels(plans, &floors);
     let mut floors = floors;
     // A stair's or ramp's shadow is in the way on every storey it rises to, not only the one
     // it stands on (a drop where the floor slab has no hole modelled).
