@@ -9,12 +9,13 @@
 //! holds the exact section, so obstacles only grow. The cost is linear in the triangles plus a
 //! hull per part.
 
-use glam::{DVec2, DVec3};
+use glam::DVec2;
 use rustc_hash::FxHashMap;
 
 use crate::mesh::Mesh;
 use crate::polygon;
 use crate::region::{self, Region};
+use crate::section::clip;
 
 /// Meshes of furnishings with at least this many triangles are drawn from their parts' hulls.
 pub const DENSE_TRIANGLES: usize = 1_500;
@@ -57,7 +58,8 @@ pub fn part_hulls(mesh: &Mesh, z_min: f64, z_max: f64) -> Vec<Region> {
         let hi = zs[0].max(zs[1]).max(zs[2]);
         hi >= z_min && lo <= z_max
     };
-    for t in mesh.triangles.iter().filter(|t| in_slab(t)) {
+    let in_band: Vec<&[u32; 3]> = mesh.triangles.iter().filter(|t| in_slab(t)).collect();
+    for t in &in_band {
         let a = find(&mut parent, ids[t[0] as usize]);
         for &v in &t[1..] {
             let b = find(&mut parent, ids[v as usize]);
@@ -68,8 +70,8 @@ pub fn part_hulls(mesh: &Mesh, z_min: f64, z_max: f64) -> Vec<Region> {
     }
     let mut parts: FxHashMap<u32, Vec<DVec2>> = FxHashMap::default();
     let (mut a, mut b) = (Vec::with_capacity(8), Vec::with_capacity(8));
-    for t in mesh.triangles.iter().filter(|t| in_slab(t)) {
-        let tri: Vec<DVec3> = t.iter().map(|&i| mesh.positions[i as usize]).collect();
+    for t in &in_band {
+        let tri = t.map(|i| mesh.positions[i as usize]);
         clip(&tri, z_min, true, &mut a);
         clip(&a, z_max, false, &mut b);
         let root = find(&mut parent, ids[t[0] as usize]);
@@ -88,64 +90,11 @@ pub fn part_hulls(mesh: &Mesh, z_min: f64, z_max: f64) -> Vec<Region> {
     region::union(&hulls)
 }
 
-/// The part of the convex polygon `poly` above (`keep_above`) or below the plane `z`.
-fn clip(poly: &[DVec3], z: f64, keep_above: bool, out: &mut Vec<DVec3>) {
-    out.clear();
-    let keep = |p: &DVec3| if keep_above { p.z >= z } else { p.z <= z };
-    for i in 0..poly.len() {
-        let (p, q) = (poly[i], poly[(i + 1) % poly.len()]);
-        if keep(&p) {
-            out.push(p);
-        }
-        if keep(&p) != keep(&q) {
-            let t = (z - p.z) / (q.z - p.z);
-            out.push(p + (q - p) * t);
-        }
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// A closed box mesh, with its own 8 vertices.
-    fn cuboid(lo: DVec3, hi: DVec3) -> Mesh {
-        let c = |x: bool, y: bool, z: bool| {
-            DVec3::new(
-                if x { hi.x } else { lo.x },
-                if y { hi.y } else { lo.y },
-                if z { hi.z } else { lo.z },
-            )
-        };
-        let positions = vec![
-            c(false, false, false),
-            c(true, false, false),
-            c(true, true, false),
-            c(false, true, false),
-            c(false, false, true),
-            c(true, false, true),
-            c(true, true, true),
-            c(false, true, true),
-        ];
-        let triangles = vec![
-            [0, 2, 1],
-            [0, 3, 2],
-            [4, 5, 6],
-            [4, 6, 7],
-            [0, 1, 5],
-            [0, 5, 4],
-            [1, 2, 6],
-            [1, 6, 5],
-            [2, 3, 7],
-            [2, 7, 6],
-            [3, 0, 4],
-            [3, 4, 7],
-        ];
-        Mesh {
-            positions,
-            triangles,
-        }
-    }
+    use crate::section::tests::cuboid;
+    use glam::DVec3;
 
     fn merged(parts: &[Mesh]) -> Mesh {
         let mut m = Mesh::default();

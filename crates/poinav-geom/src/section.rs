@@ -319,7 +319,7 @@ pub fn is_closed(mesh: &Mesh) -> bool {
 /// it, into `out` (points on the plane are kept). Sutherland-Hodgman, but an edge crossing the
 /// plane is cut at a point computed from its ends in a fixed order, so the two triangles
 /// sharing an edge cut it at the same point, to the last bit.
-fn clip(poly: &[DVec3], z: f64, keep_above: bool, out: &mut Vec<DVec3>) {
+pub(crate) fn clip(poly: &[DVec3], z: f64, keep_above: bool, out: &mut Vec<DVec3>) {
     out.clear();
     let kept = |p: DVec3| if keep_above { p.z >= z } else { p.z <= z };
     let n = poly.len();
@@ -347,12 +347,12 @@ fn crossing(a: DVec3, b: DVec3, z: f64) -> DVec3 {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::region::total_area;
 
     /// A closed box, faces outwards.
-    fn cuboid(lo: DVec3, hi: DVec3) -> Mesh {
+    pub(crate) fn cuboid(lo: DVec3, hi: DVec3) -> Mesh {
         let p = |i: u32| {
             DVec3::new(
                 if i & 1 == 0 { lo.x } else { hi.x },
