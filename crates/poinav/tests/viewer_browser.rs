@@ -11,8 +11,6 @@ mod common;
 use std::ffi::OsStr;
 use std::process::Command;
 
-use serde_json::Value;
-
 #[test]
 fn viewer_in_chromium() {
     let root = common::root();
@@ -47,24 +45,13 @@ fn viewer_in_chromium() {
     assert!(url.starts_with("http://127.0.0.1:"), "{url}");
 
     let out = tmp.path().join("e2e");
-    let run = Command::new("node")
-        .arg(root.join("tests/js/viewer-e2e.mjs"))
-        .arg(&url)
-        .arg(&out)
-        .arg(&trace)
-        .output()
-        .expect("node must be installed (tests/js/setup.sh)");
-    let report: Value =
-        serde_json::from_slice(&std::fs::read(out.join("report.json")).unwrap_or_else(|e| {
-            panic!(
-                "no report ({e}); node said:\n{}\n{}",
-                String::from_utf8_lossy(&run.stdout),
-                String::from_utf8_lossy(&run.stderr)
-            )
-        }))
-        .unwrap();
+    let (report, ok) = common::browser_report(
+        "viewer-e2e.mjs",
+        &[OsStr::new(&url), out.as_os_str(), trace.as_os_str()],
+        &out,
+    );
     assert_eq!(report["failures"], serde_json::json!([]), "{report:#}");
-    assert!(run.status.success(), "{report:#}");
+    assert!(ok, "{report:#}");
     let m = |check: &str, key: &str| report["checks"][check]["measured"][key].clone();
     let checks = report["checks"].as_object().unwrap();
     assert_eq!(checks.len(), 14, "{report:#}");

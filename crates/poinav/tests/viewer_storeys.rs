@@ -8,10 +8,8 @@
 
 mod common;
 
-use std::process::Command;
+use std::ffi::OsStr;
 use std::sync::Mutex;
-
-use serde_json::Value;
 
 /// One browser and one server at a time: each is heavy on a small machine.
 static ONE_AT_A_TIME: Mutex<()> = Mutex::new(());
@@ -24,27 +22,17 @@ fn viewer_on(model: &str) {
     let url = format!("http://{}/", server.addr);
     let tmp = tempfile::tempdir().unwrap();
     let out = tmp.path().join("storeys");
-    let run = Command::new("node")
-        .arg(root.join("tests/js/viewer-storeys.mjs"))
-        .arg(&url)
-        .arg(&out)
-        .output()
-        .expect("node must be installed (tests/js/setup.sh)");
-    let report: Value =
-        serde_json::from_slice(&std::fs::read(out.join("report.json")).unwrap_or_else(|e| {
-            panic!(
-                "no report ({e}); node said:\n{}\n{}",
-                String::from_utf8_lossy(&run.stdout),
-                String::from_utf8_lossy(&run.stderr)
-            )
-        }))
-        .unwrap();
+    let (report, ok) = common::browser_report(
+        "viewer-storeys.mjs",
+        &[OsStr::new(&url), out.as_os_str()],
+        &out,
+    );
     assert_eq!(
         report["failures"],
         serde_json::json!([]),
         "{model}: {report:#}"
     );
-    assert!(run.status.success(), "{report:#}");
+    assert!(ok, "{report:#}");
     let checks = report["checks"].as_object().unwrap();
     assert_eq!(checks.len(), 7, "{report:#}");
     let m = |check: &str, key: &str| report["checks"][check]["measured"][key].clone();

@@ -91,3 +91,29 @@ pub fn http_get(addr: &str, path: &str) -> (u16, Vec<u8>) {
     let status = head.split_whitespace().nth(1).unwrap().parse().unwrap();
     (status, buf[end + 4..].to_vec())
 }
+
+/// Runs the browser test `tests/js/SCRIPT ARGS...` with node and reads the report it writes
+/// to `OUT/report.json` (panics with what node printed when there is none), with whether node
+/// exited successfully. `OUT` is one of `ARGS`.
+pub fn browser_report(
+    script: &str,
+    args: &[&std::ffi::OsStr],
+    out: &Path,
+) -> (serde_json::Value, bool) {
+    let run = Command::new("node")
+        .arg(root().join("tests/js").join(script))
+        .args(args)
+        .output()
+        .expect("node must be installed (tests/js/setup.sh)");
+    let report = std::fs::read(out.join("report.json")).unwrap_or_else(|e| {
+        panic!(
+            "no report ({e}); node said:\n{}\n{}",
+            String::from_utf8_lossy(&run.stdout),
+            String::from_utf8_lossy(&run.stderr)
+        )
+    });
+    (
+        serde_json::from_slice(&report).unwrap(),
+        run.status.success(),
+    )
+}
