@@ -92,7 +92,14 @@ fn failing(audit: &Value) -> (Vec<&Value>, Vec<&Value>, usize) {
 #[test]
 fn office_a_gives_one_bcf_3_topic_per_failing_door_with_its_guid_camera_and_snapshot() {
     let dir = tempfile::tempdir().unwrap();
+    // IfcOpenShell's world placements of the doors, to check the cameras' frame against.
+    let placements = poinav_testkit::spawn_ifcos(
+        &common::python(),
+        "placements.py",
+        &poinav_testkit::corpus_file("office-a.ifc"),
+    );
     let (audit, bcf) = run_audit(dir.path(), "issues.bcf", &[]);
+    let placements = poinav_testkit::json_of(placements, "placements.py office-a");
     let (doors, transitions, spaces) = failing(&audit);
     // office-a for the paper robot: five 0.813 m toilet doors RESTRICTED, two stairs BLOCKED.
     assert_eq!(doors.len(), 5, "{doors:?}");
@@ -162,6 +169,29 @@ fn office_a_gives_one_bcf_3_topic_per_failing_door_with_its_guid_camera_and_snap
         let dot: f64 = dir.iter().zip(&up).map(|(a, b)| a * b).sum();
         assert!(dot.abs() < 1e-5 && up[2] > 0.0, "{up:?}");
         assert_eq!(cam["field_of_view"], 60.0);
+        // The same frame as the IFC's, in metres: the point looked at, 1 m above the floor,
+        // is within the door's width of its IfcOpenShell placement (its origin is a corner of
+        // the door), whose height is the storey's.
+        let m: Vec<f64> = placements[id]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|x| x.as_f64().unwrap())
+            .collect();
+        let t = (level + 1.0 - p[2]) / dir[2];
+        let (tx, ty) = (p[0] + t * dir[0], p[1] + t * dir[1]);
+        let off = (tx - m[3]).hypot(ty - m[7]);
+        assert!(
+            off < 0.9,
+            "door {id}: looks at ({tx:.2}, {ty:.2}), placed at ({}, {})",
+            m[3],
+            m[7]
+        );
+        assert!(
+            (m[11] - level).abs() < 0.05,
+            "door {id} at z {} on level {level}",
+            m[11]
+        );
     }
     for c in &transitions {
         let id = c["id"].as_str().unwrap();
