@@ -90,58 +90,114 @@ pub fn render(
     let window = Window::around(focus);
     let colour = status_colour(status);
     let line = window.scale * 1.5;
-    let mut data = Vec::with_capacity((WIDTH * HEIGHT * 3) as usize);
-    let sight = camera.map(|(eye, dir)| (eye, eye + dir.normalize_or_zero() * 1.2));
+    let mut px: Vec<Rgb> = Vec::with_capacity((WIDTH * HEIGHT) as usize);
     for row in 0..HEIGHT {
         for col in 0..WIDTH {
-            let p = window.point(col, row);
-            let mut c = match grid.cell_of(p).map(|i| grid.cells[i]) {
-                Some(CellState::Free) => FREE,
-                Some(CellState::Occupied) => OCCUPIED,
-                _ => UNKNOWN,
-            };
-            match focus {
-                Focus::Door { ring, center, .. } => {
-                    // A circle 0.7 m around the door finds it at a glance.
-                    let r = p.distance(*center);
-                    if (r > 0.7 && r < 0.7 + 2.0 * window.scale) || polygon::contains(ring, p) {
-                        c = colour;
+            px.push(
+                match grid.cell_of(window.point(col, row)).map(|i| grid.cells[i]) {
+                    Some(CellState::Free) => FREE,
+                    Some(CellState::Occupied) => OCCUPIED,
+                    _ => UNKNOWN,
+                },
+            );
+        }
+    }
+    // Overlays, each over the pixels of its own bounding box only.
+    let margin = DVec2::splat(line);
+    match focus {
+        Focus::Door { ring, center, .. } => {
+            if let Some((lo, hi)) = rings_bounds(std::slice::from_ref(ring)) {
+                each_pixel_in(&window, lo - margin, hi + margin, |i, p| {
+                    if polygon::contains(ring, p) {
+                        px[i] = colour;
                     } else if polygon::boundary_distance(ring, p) < line {
-                        c = darker(colour);
+                        px[i] = darker(colour);
                     }
-                }
-                Focus::Landing { rings, landing, .. } => {
+                });
+            }
+            // A circle 0.7 m around the door finds it at a glance.
+            let r1 = 0.7 + 2.0 * window.scale;
+            each_pixel_in(
+                &window,
+                *center - DVec2::splat(r1),
+                *center + DVec2::splat(r1),
+                |i, p| {
+                    let r = p.distance(*center);
+                    if r > 0.7 && r < r1 {
+                        px[i] = colour;
+                    }
+                },
+            );
+        }
+        Focus::Landing { rings, landing, .. } => {
+            if let Some((lo, hi)) = rings_bounds(rings) {
+                each_pixel_in(&window, lo - margin, hi + margin, |i, p| {
                     if rings.iter().any(|r| polygon::contains(r, p)) {
-                        c = blend(c, colour);
+                        px[i] = blend(px[i], colour);
                     } else if rings
                         .iter()
                         .any(|r| polygon::boundary_distance(r, p) < line)
                     {
-                        c = darker(colour);
+                        px[i] = darker(colour);
                     }
-                    if p.distance(*landing) < 4.0 * window.scale {
-                        c = darker(colour);
-                    }
-                }
-                Focus::Space { ring } => {
+                });
+            }
+            disc(
+                &window,
+                &mut px,
+                *landing,
+                4.0 * window.scale,
+                darker(colour),
+            );
+        }
+        Focus::Space { ring } => {
+            if let Some((lo, hi)) = rings_bounds(std::slice::from_ref(ring)) {
+                each_pixel_in(&window, lo - margin, hi + margin, |i, p| {
                     if polygon::boundary_distance(ring, p) < line {
-                        c = BLOCKED;
-                    } else if c == FREE && polygon::contains(ring, p) {
-                        c = UNREACHABLE_FILL;
+                        px[i] = BLOCKED;
+                    } else if px[i] == FREE && polygon::contains(ring, p) {
+                        px[i] = UNREACHABLE_FILL;
                     }
-                }
+                });
             }
-            if let Some((eye, end)) = sight {
-                if p.distance(eye) < 5.0 * window.scale
-                    || polygon::segment_distance(p, eye, end) < window.scale
-                {
-                    c = CAMERA;
-                }
-            }
-            data.extend_from_slice(&c);
         }
     }
-    data
+    if let Some((eye, dir)) = camera {
+        let end = eye + dir.normalize_or_zero() * 1.2;
+        let m = DVec2::splat(window.scale);
+        each_pixel_in(&window, eye.min(end) - m, eye.max(end) + m, |i, p| {
+            if polygon::segment_distance(p, eye, end) < window.scale {
+                px[i] = CAMERA;
+            }
+        });
+        disc(&window, &mut px, eye, 5.0 * window.scale, CAMERA);
+    }
+    px.into_iter().flatten().collect()
+}
+
+/// Paints the pixels within `radius` of `center`.
+fn disc(window: &Window, px: &mut [Rgb], center: DVec2, radius: f64, colour: Rgb) {
+    let r = DVec2::splat(radius);
+    each_pixel_in(window, center - r, center + r, |i, p| {
+        if p.distance(center) < radius {
+            px[i] = colour;
+        }
+    });
+}
+
+/// Calls `f` with the index and centre of every pixel of `window` whose centre may lie in the
+/// box `lo`..`hi` (world metres).
+fn each_pixel_in(window: &Window, lo: DVec2, hi: DVec2, mut f: impl FnMut(usize, DVec2)) {
+    let (w, h) = (f64::from(WIDTH), f64::from(HEIGHT));
+    let col = |x: f64| ((x - window.origin.x) / window.scale).clamp(0.0, w);
+    let row = |y: f64| (h - (y - window.origin.y) / window.scale).clamp(0.0, h);
+    let (c0, c1) = (col(lo.x).floor() as u32, col(hi.x).ceil() as u32);
+    let (r0, r1) = (row(hi.y).floor() as u32, row(lo.y).ceil() as u32);
+    for r in r0..r1.min(HEIGHT) {
+        for c in c0..c1.min(WIDTH) {
+            f((r * WIDTH + c) as usize, window.point(c, r));
+        }
+    }
 }
 
 fn darker(c: Rgb) -> Rgb {
