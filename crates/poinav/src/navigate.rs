@@ -141,6 +141,15 @@ enum BcfVersionArg {
     V2_1,
 }
 
+impl From<BcfVersionArg> for poinav_bcf::BcfVersion {
+    fn from(v: BcfVersionArg) -> Self {
+        match v {
+            BcfVersionArg::V3_0 => poinav_bcf::BcfVersion::V3_0,
+            BcfVersionArg::V2_1 => poinav_bcf::BcfVersion::V2_1,
+        }
+    }
+}
+
 /// Arguments of `poinav export nav2`.
 #[derive(Debug, clap::Args)]
 pub struct Nav2Args {
@@ -434,10 +443,7 @@ fn write_bcf(
         })
         .unwrap_or(0);
     let options = poinav_bcf::BcfOptions {
-        version: match args.bcf_version {
-            BcfVersionArg::V3_0 => poinav_bcf::BcfVersion::V3_0,
-            BcfVersionArg::V2_1 => poinav_bcf::BcfVersion::V2_1,
-        },
+        version: args.bcf_version.into(),
         grid,
         model: args
             .file
@@ -458,10 +464,7 @@ fn bcf_json(
 ) -> serde_json::Value {
     serde_json::json!({
         "file": path.display().to_string(),
-        "version": match version {
-            BcfVersionArg::V3_0 => "3.0",
-            BcfVersionArg::V2_1 => "2.1",
-        },
+        "version": poinav_bcf::BcfVersion::from(version).label(),
         "topics": topics.iter().map(|t| serde_json::json!({
             "guid": t.guid,
             "profile": t.profile_name,
