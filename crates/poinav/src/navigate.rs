@@ -117,8 +117,37 @@ pub struct AuditArgs {
     /// Print the audit as JSON.
     #[arg(long)]
     json: bool,
+    /// Also write BCF issues (a `.bcf` zip) to this file: one topic per door, stair, ramp or
+    /// lift BLOCKED or RESTRICTED for a profile and per unreachable space, each with the
+    /// element selected, a camera on it and a plan snapshot. Dated SOURCE_DATE_EPOCH when set,
+    /// else the IFC file's modification time, so the same model gives the same bytes.
+    #[arg(long, value_name = "FILE")]
+    bcf: Option<PathBuf>,
+    /// BCF version of --bcf.
+    #[arg(long, value_enum, default_value_t = BcfVersionArg::V3_0, requires = "bcf")]
+    bcf_version: BcfVersionArg,
     #[command(flatten)]
     grid: GridArgs,
+}
+
+/// `--bcf-version` values.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+enum BcfVersionArg {
+    /// BCF 3.0.
+    #[value(name = "3.0")]
+    V3_0,
+    /// BCF 2.1.
+    #[value(name = "2.1")]
+    V2_1,
+}
+
+impl From<BcfVersionArg> for poinav_bcf::BcfVersion {
+    fn from(v: BcfVersionArg) -> Self {
+        match v {
+            BcfVersionArg::V3_0 => poinav_bcf::BcfVersion::V3_0,
+            BcfVersionArg::V2_1 => poinav_bcf::BcfVersion::V2_1,
+        }
+    }
 }
 
 /// Arguments of `poinav export nav2`.
@@ -308,6 +337,7 @@ pub fn audit(args: &AuditArgs) -> anyhow::Result<ExitCode> {
         building.select_space(want)?;
     }
     crate::progress::stage("auditing");
+    let grid_options = nav.grid.clone();
     let mut report = poinav_nav::audit(
         &building,
         &profiles,
@@ -335,9 +365,20 @@ pub fn audit(args: &AuditArgs) -> anyhow::Result<ExitCode> {
         std::fs::rename(&written, &args.output)
             .with_context(|| format!("writing {}", args.output.display()))?;
     }
+    let bcf = match &args.bcf {
+        Some(path) => Some((
+            path,
+            write_bcf(args, path, &report, &building, &profiles, grid_options)?,
+        )),
+        None => None,
+    };
     crate::progress::end();
     if args.json {
-        outln!("{}", serde_json::to_string_pretty(&report.to_json())?);
+        let mut json = report.to_json();
+        if let Some((path, topics)) = &bcf {
+            json["bcf"] = bcf_json(path, args.bcf_version, topics);
+        }
+        outln!("{}", serde_json::to_string_pretty(&json)?);
     } else {
         for p in &report.profiles {
             let [full, restricted, blocked, pending] = p.door_counts();
@@ -366,6 +407,9 @@ pub fn audit(args: &AuditArgs) -> anyhow::Result<ExitCode> {
             files.len().saturating_sub(1),
             dir.display()
         );
+        if let Some((path, topics)) = &bcf {
+            outln!("wrote {} BCF topics to {}", topics.len(), path.display());
+        }
     }
     let failures = report.unreachable_required(&building, &args.require_reachable)?;
     for f in &failures {
@@ -375,6 +419,60 @@ pub fn audit(args: &AuditArgs) -> anyhow::Result<ExitCode> {
         ExitCode::SUCCESS
     } else {
         ExitCode::from(1)
+    })
+}
+
+/// Writes `--bcf`: the audit's failures as BCF topics.
+fn write_bcf(
+    args: &AuditArgs,
+    path: &Path,
+    report: &poinav_nav::AuditReport,
+    building: &Building,
+    profiles: &[RobotProfile],
+    grid: GridOptions,
+) -> anyhow::Result<Vec<poinav_bcf::Issue>> {
+    crate::progress::stage("writing BCF");
+    // Reproducible: SOURCE_DATE_EPOCH, else the model's modification time.
+    let created_s = std::env::var("SOURCE_DATE_EPOCH")
+        .ok()
+        .and_then(|v| v.trim().parse::<i64>().ok())
+        .or_else(|| {
+            let modified = std::fs::metadata(&args.file).ok()?.modified().ok()?;
+            let secs = modified.duration_since(std::time::UNIX_EPOCH).ok()?;
+            i64::try_from(secs.as_secs()).ok()
+        })
+        .unwrap_or(0);
+    let options = poinav_bcf::BcfOptions {
+        version: args.bcf_version.into(),
+        grid,
+        model: args
+            .file
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned()),
+        created_s,
+    };
+    Ok(poinav_bcf::write_bcf(
+        path, report, building, profiles, &options,
+    )?)
+}
+
+/// What `--bcf` wrote, for `--json`.
+fn bcf_json(
+    path: &Path,
+    version: BcfVersionArg,
+    topics: &[poinav_bcf::Issue],
+) -> serde_json::Value {
+    serde_json::json!({
+        "file": path.display().to_string(),
+        "version": poinav_bcf::BcfVersion::from(version).label(),
+        "topics": topics.iter().map(|t| serde_json::json!({
+            "guid": t.guid,
+            "profile": t.profile_name,
+            "kind": t.kind.label(),
+            "element": t.element,
+            "status": t.status,
+            "title": t.title,
+        })).collect::<Vec<_>>(),
     })
 }
 
