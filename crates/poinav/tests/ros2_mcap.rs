@@ -121,7 +121,10 @@ fn every_shipped_scenario_records_ros2_messages_that_decode_and_match_the_trace(
             // The doorway run starts with the door PENDING_VALIDATION and the sensors set its
             // status: the markers are published again then.
             let markers = if *name == "doorway" { 2 } else { 1 };
-            assert_eq!(report["counts"]["/poi/markers"], markers, "{name}: {report}");
+            assert_eq!(
+                report["counts"]["/poi/markers"], markers,
+                "{name}: {report}"
+            );
             recordings += 1;
         }
     }
