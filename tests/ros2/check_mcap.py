@@ -96,6 +96,9 @@ def main():
         topics = {c.topic for c in summary.channels.values()}
         if topics != want_topics:
             fail(f"topics {sorted(topics)} != {sorted(want_topics)}")
+        meta = {m.name: m.metadata for m in reader.iter_metadata()}
+        if meta.get("rosbag2", {}).get("ROS_DISTRO") != "jazzy":
+            fail(f"metadata records {meta}")
         for s in summary.schemas.values():
             if s.encoding != "ros2msg":
                 fail(f"schema {s.name} encoded {s.encoding}")

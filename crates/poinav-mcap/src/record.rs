@@ -40,6 +40,9 @@ pub const SCAN_BEAMS: usize = 7;
 /// The sensor's range, metres (`range_max`).
 pub const RANGE_MAX_M: f32 = 5.0;
 
+/// The ROS 2 distribution whose message definitions the recordings use.
+pub const ROS_DISTRO: &str = "jazzy";
+
 /// What a recording shows besides the trace.
 #[derive(Debug, Clone, Copy)]
 pub struct Scene<'a> {
@@ -297,6 +300,14 @@ fn record<W: Write + std::io::Seek>(
     mut statuses: BTreeMap<String, String>,
 ) -> Result<(), McapError> {
     let stamp_of = |step: u64| START_NS + (step as f64 * scene.dt * 1e9).round() as u64;
+    // What rosbag2's MCAP plugin reads: with a `rosbag2` record that has no
+    // `serialized_metadata` it takes the channels' QoS profiles in the integer form of
+    // metadata versions up to 8, which Humble and Jazzy both read.
+    let meta = mcap::records::Metadata {
+        name: "rosbag2".into(),
+        metadata: BTreeMap::from([("ROS_DISTRO".to_string(), ROS_DISTRO.to_string())]),
+    };
+    o.w.write_metadata(&meta).map_err(|e| o.err(e))?;
     let map_ch = o.channel("/map", schema::occupancy_grid(), true)?;
     let markers_ch = o.channel("/poi/markers", schema::marker_array(), true)?;
     let tf_ch = o.channel("/tf", schema::tf_message(), false)?;
