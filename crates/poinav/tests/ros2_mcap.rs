@@ -165,3 +165,73 @@ fn a_recording_is_byte_identical_run_to_run_and_needs_a_trace() {
     assert_eq!(code, 2, "{stderr}");
     assert!(stderr.contains("--no-trace"), "{stderr}");
 }
+
+#[test]
+fn serve_record_writes_the_live_session_when_stopped() {
+    use std::io::{BufRead, Read};
+    let py = poinav_testkit::python("mcap, mcap_ros2");
+    let tmp = tempfile::tempdir().unwrap();
+    let scenario = common::root().join("crates/poinav-sim/scenarios/separation.toml");
+    let target = tmp.path().join("live.mcap");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_poinav"))
+        .arg("serve")
+        .arg("--scenario")
+        .arg(&scenario)
+        .args(["--port", "0", "--record"])
+        .arg(&target)
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut stdout = std::io::BufReader::new(child.stdout.take().unwrap());
+    let mut line = String::new();
+    stdout.read_line(&mut line).unwrap();
+    assert!(line.starts_with("poinav viewer: http://"), "{line}");
+    std::thread::sleep(std::time::Duration::from_secs(2));
+    let killed = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(killed.success());
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(60);
+    let status = loop {
+        if let Some(s) = child.try_wait().unwrap() {
+            break s;
+        }
+        assert!(std::time::Instant::now() < deadline, "serve did not stop");
+        std::thread::sleep(std::time::Duration::from_millis(100));
+    };
+    let mut rest = String::new();
+    stdout.read_to_string(&mut rest).unwrap();
+    assert!(status.success(), "{status}: {rest}");
+    assert!(rest.contains("wrote ROS 2 recording to"), "{rest}");
+    let script = r#"
+import json, sys
+from collections import Counter
+from mcap.reader import make_reader
+from mcap_ros2.decoder import DecoderFactory
+with open(sys.argv[1], "rb") as f:
+    r = make_reader(f, decoder_factories=[DecoderFactory()])
+    print(json.dumps(Counter(c.topic for _, c, _, _ in r.iter_decoded_messages())))
+"#;
+    let out = Command::new(&py)
+        .args(["-c", script])
+        .arg(&target)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let counts: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    // About 2 s at 60 Hz (the machine may be slow): one scan, odometry and /tf per step.
+    let steps = counts["/tf"].as_u64().unwrap();
+    assert!(steps >= 30, "{counts}");
+    for r in ["Robot1", "Robot2"] {
+        assert_eq!(counts[format!("/{r}/scan")], steps, "{counts}");
+        assert_eq!(counts[format!("/{r}/odom")], steps, "{counts}");
+    }
+    assert_eq!(counts["/map"], 1);
+    assert_eq!(counts["/poi/markers"], 1);
+}
