@@ -257,7 +257,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     let recording = match &args.record {
         Some(target) => Some((
             std::sync::Arc::new(std::sync::Mutex::new(crate::record::LiveTrace::new(
-                target,
+                target, options.dt,
             )?)),
             storeys[current].floor.clone(),
             options.dt,

@@ -2,7 +2,7 @@
 //! decodes every message with `mcap` + `mcap-ros2-support` and with `rosbags`, and compares
 //! topics, counts, scans, odometry and the occupancy grid with the run's trace and the Nav2
 //! map `poinav_nav::write_bundle` writes for the same storey and profile. The same run
-//! twice gives the same bytes.
+//! twice gives the same bytes. `poinav serve --record` writes the live session when stopped.
 
 mod common;
 
