@@ -215,6 +215,12 @@ impl Bound {
         self.addr
     }
 
+    /// A receiver of every following state the pages get (JSON text; a receiver that falls
+    /// behind skips states, as a slow page does).
+    pub fn subscribe(&self) -> tokio::sync::broadcast::Receiver<Arc<str>> {
+        self.app.live.subscribe()
+    }
+
     /// Serves until the process ends.
     pub async fn run(self) -> Result<(), ViewerError> {
         self.run_until(std::future::pending()).await

@@ -25,6 +25,7 @@ mod inspect;
 mod navigate;
 mod plan;
 mod progress;
+mod record;
 mod serve;
 mod simulate;
 mod warnings;

@@ -48,6 +48,10 @@ pub struct Args {
     /// Pages connected at once.
     #[arg(long, default_value_t = 8)]
     max_clients: usize,
+    /// Record the session as a ROS 2 recording (MCAP), written here when the server stops
+    /// (the storey shown first, until a page switches storey or starts again).
+    #[arg(long, value_name = "FILE")]
+    record: Option<PathBuf>,
 }
 
 fn text(s: &TypedScalar) -> String {
@@ -250,6 +254,16 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     if let Some(reason) = &storeys[current].unplaced {
         anyhow::bail!("{reason}");
     }
+    let recording = match &args.record {
+        Some(target) => Some((
+            std::sync::Arc::new(std::sync::Mutex::new(crate::record::LiveTrace::new(
+                target, options.dt,
+            )?)),
+            storeys[current].floor.clone(),
+            options.dt,
+        )),
+        None => None,
+    };
     let viewer = Viewer {
         title,
         glb,
@@ -288,11 +302,35 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
                 addr.ip()
             );
         }
-        bound
+        let recorder = recording.as_ref().map(|(trace, _, _)| {
+            tokio::spawn(crate::record::record_states(
+                bound.subscribe(),
+                trace.clone(),
+            ))
+        });
+        let served = bound
             .run_until(async {
                 let _ = tokio::signal::ctrl_c().await;
             })
-            .await
+            .await;
+        if let Some(task) = recorder {
+            task.abort();
+            let _ = task.await;
+        }
+        served
     })?;
+    if let (Some(target), Some((trace, floor, dt))) = (&args.record, recording) {
+        let trace = std::sync::Arc::into_inner(trace)
+            .context("--record: the recorder is still running")?
+            .into_inner()
+            .unwrap_or_else(|e| e.into_inner());
+        let summary = trace.finish(target, &floor, &profile, dt)?;
+        outln!(
+            "wrote ROS 2 recording to {} ({} steps, {} messages)",
+            target.display(),
+            summary.steps,
+            summary.total()
+        );
+    }
     Ok(ExitCode::SUCCESS)
 }

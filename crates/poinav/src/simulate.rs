@@ -32,6 +32,32 @@ pub struct Args {
     /// Write no trace.jsonl (summary, expectations and plots are the same as with one).
     #[arg(long, conflicts_with = "trace_every")]
     no_trace: bool,
+    /// Also write a ROS 2 recording (MCAP: scans, odometry, TF, map, POI markers and events)
+    /// of the trace's steps here (with several variants: `NAME.<variant>.mcap`).
+    #[arg(long, value_name = "FILE", conflicts_with = "no_trace")]
+    mcap: Option<PathBuf>,
+}
+
+/// Writes the ROS 2 recording of `run` (its trace.jsonl, floor and Nav2 map) to `path`.
+fn write_mcap(scenario: &Scenario, run: &VariantRun, path: &Path) -> anyhow::Result<()> {
+    let profile = poinav_sim::scenario::load_profile(&scenario.building.profile, &scenario.dir)
+        .map_err(anyhow::Error::msg)?;
+    let options = poinav_nav::Nav2Options::default();
+    let map = poinav_mcap::storey_map(&run.building.floor, &profile, &options)?;
+    let scene = poinav_mcap::Scene {
+        floor: &run.building.floor,
+        map: &map,
+        dt: scenario.dt,
+    };
+    let trace = run.dir.join(poinav_sim::output::TRACE);
+    let summary = poinav_mcap::write_recording(&trace, &scene, path)?;
+    outln!(
+        "wrote ROS 2 recording to {} ({} steps, {} messages)",
+        path.display(),
+        summary.steps,
+        summary.total()
+    );
+    Ok(())
 }
 
 /// One variant's result.
@@ -154,6 +180,15 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
                 .write(&path)
                 .with_context(|| format!("writing {}", path.display()))?;
             outln!("wrote sensor findings to {}", path.display());
+        }
+    }
+    if let Some(target) = &args.mcap {
+        for r in &runs {
+            let path = match (&r.variant, runs.len()) {
+                (Some(v), n) if n > 1 => target.with_extension(format!("{v}.mcap")),
+                _ => target.clone(),
+            };
+            write_mcap(&scenario, r, &path)?;
         }
     }
     outln!("outputs in {}", args.output.display());
