@@ -42,7 +42,9 @@
 //!   [`lift_service`]).
 //!
 //! Closed doors and connections (BLOCKED for the profile, or no room for the robot) have no
-//! node and no edge. The same building and options give the same bytes.
+//! node and no edge. No value is `null` (the loader fails a whole graph on one): a member
+//! without a value (an unnamed element's `name`) is left out. The same building and options
+//! give the same bytes.
 
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -514,11 +516,31 @@ fn zones_of(nav: &Navigator<'_>, n: usize, fi: usize) -> BTreeSet<usize> {
         .collect()
 }
 
+/// `v` without its null members (an unnamed element's `name`): nav2_route's loader takes
+/// numbers, booleans, strings, arrays and objects, and fails the whole graph on a null.
+fn without_nulls(v: &Value) -> Value {
+    match v {
+        Value::Object(m) => Value::Object(
+            m.iter()
+                .filter(|(_, x)| !x.is_null())
+                .map(|(k, x)| (k.clone(), without_nulls(x)))
+                .collect(),
+        ),
+        Value::Array(a) => Value::Array(
+            a.iter()
+                .filter(|x| !x.is_null())
+                .map(without_nulls)
+                .collect(),
+        ),
+        other => other.clone(),
+    }
+}
+
 fn node_feature(id: usize, n: &GraphNode, frame: &str) -> Value {
     json!({
         "type": "Feature",
         "geometry": {"type": "Point", "coordinates": [round6(n.p.x), round6(n.p.y)]},
-        "properties": {"id": id, "frame": frame, "metadata": n.meta},
+        "properties": {"id": id, "frame": frame, "metadata": without_nulls(&n.meta)},
     })
 }
 
@@ -529,10 +551,10 @@ fn edge_feature(id: usize, start: usize, end: usize, p: DVec2, q: DVec2, e: &Gra
         "endid": end,
         "cost": e.cost_s,
         "overridable": e.overridable,
-        "metadata": e.meta,
+        "metadata": without_nulls(&e.meta),
     });
     if !e.operations.is_empty() {
-        props["operations"] = Value::Object(e.operations.clone());
+        props["operations"] = without_nulls(&Value::Object(e.operations.clone()));
     }
     json!({
         "type": "Feature",
@@ -697,6 +719,12 @@ pub fn building_geojson(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn nulls_are_left_out_at_every_depth() {
+        let v = json!({"name": null, "id": 3, "op": {"door_name": null, "x": [1, null]}});
+        assert_eq!(without_nulls(&v), json!({"id": 3, "op": {"x": [1]}}));
+    }
 
     #[test]
     fn service_names_are_ros_names_and_differ_per_id() {

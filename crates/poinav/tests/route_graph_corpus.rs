@@ -34,6 +34,15 @@ struct Graph {
     out: BTreeMap<u64, Vec<(u64, f64, u64)>>,
 }
 
+fn has_null(v: &Value) -> bool {
+    match v {
+        Value::Null => true,
+        Value::Object(m) => m.values().any(has_null),
+        Value::Array(a) => a.iter().any(has_null),
+        _ => false,
+    }
+}
+
 fn load_graph(path: &Path) -> Graph {
     let text = std::fs::read_to_string(path).unwrap();
     let json: Value = serde_json::from_str(&text).unwrap();
@@ -42,6 +51,8 @@ fn load_graph(path: &Path) -> Graph {
     let (mut nodes, mut edges, mut out) = (BTreeMap::new(), BTreeMap::new(), BTreeMap::new());
     for f in json["features"].as_array().unwrap() {
         let p = &f["properties"];
+        // The loader takes numbers, booleans, strings, arrays and objects; a null fails it.
+        assert!(!has_null(p), "{}: a null in {p}", path.display());
         let id = p["id"].as_u64().unwrap();
         assert!(ids.insert(id), "{}: id {id} twice", path.display());
         match f["geometry"]["type"].as_str().unwrap() {
