@@ -6,6 +6,9 @@ Prints one JSON object:
   "psets":      {GlobalId: {set name: {property: value}}} for the three POI sets
                 (PREFIX + POI_Classification / RobotAccessibility / RobotCoordination) as
                 ifcopenshell.util.element.get_psets reads them (the "id" key dropped);
+  "storeys":    {GlobalId: storey label} for enriched elements that IfcOpenShell places in a
+                storey (ifcopenshell.util.element.get_container, walking up aggregates),
+                labelled by its Name, else its GlobalId;
   "new_errors": ifcopenshell.validate errors of ENRICHED that ORIGINAL does not have
                 (compared as multisets of the messages validate.py prints, with the
                 FILE_NAME entry quoted in header errors left out, as its time stamp changes).
@@ -39,6 +42,13 @@ def errors(f):
     return collections.Counter(normalise(describe(s)) for s in logger.statements if s.get("level") == "error")
 
 
+def storey_of(element):
+    """The storey IfcOpenShell places `element` in (its container, or its whole's, upwards)."""
+    if element.is_a("IfcSpatialStructureElement") or element.is_a("IfcSpatialElement"):
+        return None
+    return uel.get_container(element, ifc_class="IfcBuildingStorey")
+
+
 def main(argv):
     validate = "--no-validate" not in argv
     args = [a for a in argv if a != "--no-validate"]
@@ -54,13 +64,17 @@ def main(argv):
         return 1
     names = [prefix + n for n in ("POI_Classification", "RobotAccessibility", "RobotCoordination")]
     psets = {}
+    storeys = {}
     for element in after.by_type("IfcObject"):
         sets = uel.get_psets(element, psets_only=True)
         found = {n: {k: v for k, v in sets[n].items() if k != "id"} for n in names if n in sets}
         if found:
             psets[element.GlobalId] = found
+            storey = storey_of(element)
+            if storey is not None:
+                storeys[element.GlobalId] = storey.Name if (storey.Name or "").strip() else storey.GlobalId
     new_errors = sorted((errors(after) - errors(before)).elements()) if validate else []
-    json.dump({"psets": psets, "new_errors": new_errors}, sys.stdout, indent=1, sort_keys=True, default=str)
+    json.dump({"psets": psets, "storeys": storeys, "new_errors": new_errors}, sys.stdout, indent=1, sort_keys=True, default=str)
     sys.stdout.write("\n")
     return 0
 

@@ -136,15 +136,6 @@ pub(crate) struct Prepared<'a> {
     pub materials: Vec<Material>,
 }
 
-/// A storey's display name.
-fn storey_label(s: &Storey) -> String {
-    match (&s.name, &s.global_id) {
-        (Some(n), _) if !n.trim().is_empty() => n.clone(),
-        (_, Some(g)) if !g.is_empty() => g.clone(),
-        _ => format!("Storey {}", s.id),
-    }
-}
-
 /// Local geometry of one mesh: (translation in world Y-up, positions, triangles, normals).
 type Local = (DVec3, Vec<[f32; 3]>, Vec<[u32; 3]>, Vec<[f32; 3]>);
 
@@ -222,7 +213,7 @@ pub(crate) fn prepare_with<'a>(
         let elevation = s.elevation_m.filter(|e| e.is_finite()).unwrap_or(0.0);
         groups.push(Group {
             storey: Some(s),
-            label: storey_label(s),
+            label: s.label(),
             origin: DVec3::new(0.0, elevation, 0.0),
             elements: Vec::new(),
         });

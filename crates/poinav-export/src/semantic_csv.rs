@@ -63,7 +63,8 @@ pub fn to_csv(c: &Classification, metres_per_unit: f64, timestamp: &str) -> Vec<
                 .unwrap_or_default(),
             k.map(|k| k.applies_to.label().to_string())
                 .unwrap_or_default(),
-            num(e.facts.clear_width_m),
+            // Metres to the micrometre: no float noise from unit conversion (0.9144000000000001).
+            num(e.facts.clear_width_m.map(|w| (w * 1e6).round() / 1e6)),
             a.map(|a| a.reason.clone()).unwrap_or_default(),
         ];
         w.write_record(&row).expect("writing to memory");

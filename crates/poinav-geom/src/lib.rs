@@ -65,6 +65,7 @@ pub mod section;
 pub mod surface_style;
 pub mod triangulation;
 mod unit_assignment;
+pub mod walking_slope;
 pub mod winding_chain;
 
 pub use door::{door_geometry, DoorGeometry};
@@ -84,3 +85,4 @@ pub use placement::{axis2placement_3d, PlacementCache};
 pub use plan_kind::PlanItemKind;
 pub use representation::Approximation;
 pub use unit_assignment::{plane_angle_unit, Units};
+pub use walking_slope::walking_slope_deg;

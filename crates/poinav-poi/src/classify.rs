@@ -169,7 +169,13 @@ fn element_access(
             format!("{} is not passable by a ground robot", facts.class),
         ),
         AccessibilityKind::Stairs => stairs_status(profile),
-        AccessibilityKind::Slope => slope_status(facts.slope_deg, profile),
+        AccessibilityKind::Slope => {
+            let (status, reason) = slope_status(facts.slope_deg, profile);
+            match facts.slope_source.filter(|s| *s != "property") {
+                Some(source) => (status, format!("{reason} (from its {source})")),
+                None => (status, reason),
+            }
+        }
         AccessibilityKind::ClearWidth => clear_width_status(
             facts.clear_width_m,
             Some(facts.clear_width_source.unwrap_or("unknown")),
@@ -219,7 +225,7 @@ pub fn classify(model: &Model, rules: &RuleSet, profile: &RobotProfile) -> Class
                 global_id: e.global_id().unwrap_or_default(),
                 class: e.type_name().to_string(),
                 name: e.name(),
-                storey: spatial::storey_of(e).and_then(|s| s.name()),
+                storey: spatial::storey_of(e).map(spatial::label_of),
                 rule: rule.id.clone(),
                 category: rule.category.expect("compiled rules have a category"),
                 poi_type: rule.poi_type.expect("compiled rules have a type"),

@@ -89,6 +89,8 @@ pub struct Facts {
     pub storey_elevation_m: Option<f64>,
     /// Where the clear width came from (`lining`, `overall width`, `geometry`).
     pub clear_width_source: Option<&'static str>,
+    /// Where the slope came from (`property`, `flights' properties`, `geometry`).
+    pub slope_source: Option<&'static str>,
 }
 
 impl Facts {
@@ -240,17 +242,8 @@ impl<'m> FactContext<'m> {
         if f.predefined_type.as_deref() == Some("USERDEFINED") {
             f.predefined_type = f.object_type.clone().or(f.predefined_type);
         }
-        let sets = if with_properties {
-            property::property_sets(e)
-        } else {
-            Vec::new()
-        };
-        for set in sets {
-            for p in set.properties {
-                if let Some(v) = fact_value(&p.value) {
-                    f.properties.insert(format!("{}.{}", set.name, p.name), v);
-                }
-            }
+        if with_properties {
+            f.properties = properties_of(e);
         }
         f.is_external = f.properties.iter().find_map(|(k, v)| match v {
             FactValue::Bool(b) if k.ends_with("Common.IsExternal") => Some(*b),
@@ -303,23 +296,81 @@ impl<'m> FactContext<'m> {
                 f.door_count = Some(self.doors_of_space(e.id()).len() as f64);
             }
         }
-        if e.is_a("IfcRamp") || e.is_a("IfcRampFlight") {
-            f.slope_deg = [
-                "Pset_RampFlightCommon.Slope",
-                "Pset_RampCommon.RequiredSlope",
-                "Pset_RampFlightCommon.RequiredSlope",
-            ]
-            .iter()
-            .find_map(|k| match f.properties.get(*k) {
-                Some(FactValue::Number(a)) => Some((a * self.radians).to_degrees()),
-                _ => None,
-            });
+        if with_properties && (e.is_a("IfcRamp") || e.is_a("IfcRampFlight")) {
+            (f.slope_deg, f.slope_source) = self.ramp_slope(e, &f.properties);
         }
         f.storey_elevation_m = spatial::storey_of(e)
             .and_then(|s| s.get_f64("Elevation"))
             .map(|z| z * self.metres);
         f
     }
+}
+
+/// Slope properties of ramps and ramp flights, in the order they are trusted.
+const SLOPE_PROPERTIES: [&str; 3] = [
+    "Pset_RampFlightCommon.Slope",
+    "Pset_RampCommon.RequiredSlope",
+    "Pset_RampFlightCommon.RequiredSlope",
+];
+
+impl<'m> FactContext<'m> {
+    /// The slope of ramp or flight `e` in degrees and where it came from: its own property set,
+    /// else (a ramp) the steepest of its flights' properties, else the steepest walking surface
+    /// of its mesh (or its flights' meshes) ([`poinav_geom::walking_slope_deg`]).
+    fn ramp_slope(
+        &self,
+        e: Entity<'m>,
+        properties: &BTreeMap<String, FactValue>,
+    ) -> (Option<f64>, Option<&'static str>) {
+        let from_props = |props: &BTreeMap<String, FactValue>| {
+            SLOPE_PROPERTIES.iter().find_map(|k| match props.get(*k) {
+                Some(FactValue::Number(a)) => Some((a * self.radians).to_degrees()),
+                _ => None,
+            })
+        };
+        if let Some(s) = from_props(properties) {
+            return (Some(s), Some("property"));
+        }
+        let flights: Vec<Entity<'m>> = e
+            .inverse("IsDecomposedBy")
+            .iter()
+            .flat_map(|r| r.get_refs("RelatedObjects"))
+            .filter(|p| p.is_a("IfcRampFlight"))
+            .collect();
+        let steepest = |it: &mut dyn Iterator<Item = f64>| it.reduce(f64::max);
+        let by_flights = steepest(
+            &mut flights
+                .iter()
+                .filter_map(|fl| from_props(&properties_of(*fl))),
+        );
+        if by_flights.is_some() {
+            return (by_flights, Some("flights' properties"));
+        }
+        let mut cache = poinav_geom::PlacementCache::new(self.model);
+        let mut slope_of = |p: Entity<'m>| {
+            poinav_geom::mesh_product(&mut cache, p)
+                .ok()
+                .and_then(|m| poinav_geom::walking_slope_deg(&m.mesh))
+        };
+        let by_geometry = slope_of(e).or_else(|| {
+            let parts: Vec<f64> = flights.iter().filter_map(|fl| slope_of(*fl)).collect();
+            parts.into_iter().reduce(f64::max)
+        });
+        (by_geometry, by_geometry.map(|_| "geometry"))
+    }
+}
+
+/// Every property of `e` with a value, keyed `Pset.Property`.
+fn properties_of(e: Entity<'_>) -> BTreeMap<String, FactValue> {
+    let mut out = BTreeMap::new();
+    for set in property::property_sets(e) {
+        for p in set.properties {
+            if let Some(v) = fact_value(&p.value) {
+                out.insert(format!("{}.{}", set.name, p.name), v);
+            }
+        }
+    }
+    out
 }
 
 fn fact_value(v: &PropertyValue) -> Option<FactValue> {

@@ -185,6 +185,20 @@ fn r3_corridors_are_found_in_several_languages_and_rooms_are_destinations() {
         ("7", "Besprechungsraum", false),
         ("8", "Office", false),
         ("9", "Ganglion lab", false),
+        // "Hall" alone or as a house's hall is circulation; a banquet or sports hall is not.
+        ("10", "Hall", true),
+        ("11", "Hall 2", true),
+        ("12", "Stair hall", true),
+        ("13", "Banquet Hall", false),
+        ("14", "Sports hall", false),
+        ("15", "Lecture Hall 1", false),
+        ("16", "Entrance Hall", true),
+        // Cyrillic names, as Russian and Ukrainian houses write them.
+        ("17", "Коридор", true),
+        ("18", "коридор 2", true),
+        ("19", "Прихожая", true),
+        ("20", "Холл", true),
+        ("21", "Спальня", false),
     ];
     let text: String = names
         .iter()
@@ -220,16 +234,31 @@ fn r3_corridors_are_found_in_several_languages_and_rooms_are_destinations() {
 fn r3_corridor_from_space_common_category_and_hazard_spaces() {
     let c = run(&format!(
         "{}#101=IFCPROPERTYSINGLEVALUE('Category',$,IFCLABEL('Circulation'),$);#102=IFCPROPERTYSET({},$,'Pset_SpaceCommon',$,(#101));\
-         #103=IFCRELDEFINESBYPROPERTIES({},$,$,$,(#100),#102);{}{}",
+         #103=IFCRELDEFINESBYPROPERTIES({},$,$,$,(#100),#102);{}{}{}",
         space(100, "0.12", "Zone 12"),
         guid(102),
         guid(103),
         space(104, "B01", "Electrical Room"),
         space(105, "B02", "Technikraum"),
+        space(106, "B03", "Лестничная клетка"),
     ));
     assert_eq!(c.elements[0].rule, "R3-corridor-property");
-    assert_eq!(c.elements[1].primary, [Role::Hazard, Role::Destination]);
-    assert_eq!(c.elements[2].primary, [Role::Hazard, Role::Destination]);
+    for e in &c.elements[1..] {
+        assert_eq!(e.primary, [Role::Hazard, Role::Destination], "{:?}", e.name);
+    }
+}
+
+#[test]
+fn a_banquet_hall_category_is_not_circulation() {
+    let c = run(&format!(
+        "{}#101=IFCPROPERTYSINGLEVALUE('Category',$,IFCLABEL('Banquet Hall'),$);#102=IFCPROPERTYSET({},$,'Pset_SpaceCommon',$,(#101));\
+         #103=IFCRELDEFINESBYPROPERTIES({},$,$,$,(#100),#102);",
+        space(100, "0.12", "Zone 12"),
+        guid(102),
+        guid(103),
+    ));
+    assert_eq!(c.elements[0].rule, "R3-room");
+    assert_eq!(c.elements[0].primary, [Role::Destination]);
 }
 
 #[test]
@@ -561,4 +590,70 @@ fn enriching_an_ifc2x3_file_without_owner_history_is_idempotent() {
         "{:?}",
         reread.diagnostics()
     );
+}
+
+#[test]
+fn a_ramp_without_a_slope_takes_the_steepest_of_its_flights() {
+    // The ramp itself has no slope property; its two flights have 0.05 and 0.08 rad.
+    let flights = |gentle: f64, steep: f64| {
+        format!(
+            "#100=IFCRAMP({},$,'Ramp',$,$,$,$,$,$);\
+             #101=IFCRAMPFLIGHT({},$,'F1',$,$,$,$,$,$);#102=IFCRAMPFLIGHT({},$,'F2',$,$,$,$,$,$);\
+             #103=IFCRELAGGREGATES({},$,$,$,#100,(#101,#102));\
+             #110=IFCPROPERTYSINGLEVALUE('Slope',$,IFCPLANEANGLEMEASURE({gentle:?}),$);\
+             #111=IFCPROPERTYSET({},$,'Pset_RampFlightCommon',$,(#110));#112=IFCRELDEFINESBYPROPERTIES({},$,$,$,(#101),#111);\
+             #120=IFCPROPERTYSINGLEVALUE('Slope',$,IFCPLANEANGLEMEASURE({steep:?}),$);\
+             #121=IFCPROPERTYSET({},$,'Pset_RampFlightCommon',$,(#120));#122=IFCRELDEFINESBYPROPERTIES({},$,$,$,(#102),#121);",
+            guid(100),
+            guid(101),
+            guid(102),
+            guid(103),
+            guid(111),
+            guid(112),
+            guid(121),
+            guid(122)
+        )
+    };
+    let ramp = |c: &Classification| {
+        c.elements
+            .iter()
+            .find(|e| e.name.as_deref() == Some("Ramp"))
+            .unwrap()
+            .accessibility
+            .clone()
+            .unwrap()
+    };
+    let ok = ramp(&run(&flights(0.05, 0.08)));
+    assert_eq!(ok.status, S::FullAccess);
+    assert_eq!(
+        ok.reason,
+        "slope 4.6 deg <= max 6.0 deg (from its flights' properties)"
+    );
+    let steep = ramp(&run(&flights(0.05, 0.12)));
+    assert_eq!(steep.status, S::Blocked);
+    assert!(
+        steep.reason.starts_with("slope 6.9 deg > max"),
+        "{}",
+        steep.reason
+    );
+}
+
+#[test]
+fn ramps_without_slope_properties_are_measured_like_ifcopenshell_measures_them() {
+    // ramps-extract.ifc: three IfcRamps, no slope in any property set. Their slope comes from
+    // the steepest walking surface of their meshes; IfcOpenShell's meshes give the same.
+    let file = poinav_testkit::corpus_file("ramps-extract.ifc");
+    let py = poinav_testkit::python("ifcopenshell, numpy");
+    let reference = poinav_testkit::ifcos_with(&py, "ramp_slopes.py", &[file.as_os_str()]);
+    let model = Model::open(&file).unwrap();
+    let ctx = poinav_poi::FactContext::new(&model);
+    let ramps = model.instances_of("IfcRamp");
+    assert_eq!(ramps.len(), 3);
+    for r in ramps {
+        let facts = ctx.facts(r);
+        let want = reference[r.global_id().unwrap().as_str()].as_f64().unwrap();
+        let got = facts.slope_deg.unwrap();
+        assert_eq!(facts.slope_source, Some("geometry"));
+        assert!((got - want).abs() <= 0.1, "{}: {got} vs {want}", r.id());
+    }
 }

@@ -184,6 +184,23 @@ fn check_file(file: &Path, dir: &Path, prefix: &str) -> Vec<String> {
                 row["GlobalId"], row["IfcClass"]
             ));
         }
+        // Where IfcOpenShell places the element in a storey, the CSV names that storey.
+        if let Some(storey) = check["storeys"][&row["GlobalId"]].as_str() {
+            if row["Storey"] != storey {
+                problems.push(format!(
+                    "{name}: {} {}: storey `{}` vs IfcOpenShell's `{storey}`",
+                    row["GlobalId"], row["IfcClass"], row["Storey"]
+                ));
+            }
+        }
+        // Clear widths carry no float noise from unit conversion: at most 6 decimals (1 µm).
+        let width = &row["ClearWidth_m"];
+        if width.split_once('.').is_some_and(|(_, d)| d.len() > 6) {
+            problems.push(format!(
+                "{name}: {} ClearWidth_m {width} has float noise",
+                row["GlobalId"]
+            ));
+        }
         if !row["LastValidated"].is_empty() && row["LastValidated"] != STAMP {
             problems.push(format!(
                 "{name}: LastValidated {} is not SOURCE_DATE_EPOCH",
