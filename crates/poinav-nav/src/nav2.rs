@@ -661,5 +661,36 @@ say which storey (`to_storey`, `to_frame`) to load when the robot takes them.
         od = crate::route_graph::OPEN_DOOR,
         cl = crate::route_graph::CALL_LIFT,
     );
+    if !storeys.is_empty() {
+        s.push_str(
+            "
+## Frames of the building graph
+
+nav2_route moves every node into its route frame through TF when it loads a graph, and
+refuses a graph whose frames TF does not know. The storey graphs are all in the map frame;
+for the building's graph, publish each storey's frame from the route frame. The storeys share
+the building's x and y, so only z, the storey's elevation, differs:
+
+```sh
+",
+        );
+        for st in storeys {
+            let floor = st
+                .folder
+                .split('-')
+                .next()
+                .and_then(|i| i.parse::<usize>().ok())
+                .and_then(|i| nav.building.floors.get(i));
+            let _ = writeln!(
+                s,
+                "ros2 run tf2_ros static_transform_publisher --z {} --frame-id {} --child-frame-id {}  # {}",
+                round6(floor.map_or(0.0, |f| f.elevation_m)),
+                options.frame,
+                crate::route_graph::storey_frame(options, &st.folder),
+                st.floor
+            );
+        }
+        s.push_str("```\n");
+    }
     s
 }

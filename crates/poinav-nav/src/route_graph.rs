@@ -1,7 +1,9 @@
 //! The nav2_route graphs of a Nav2 bundle, in the GeoJSON that nav2_route's
 //! `GeoJsonGraphFileLoader` reads: one per storey (`<folder>/route_graph.geojson`, every node
 //! in the frame [`Nav2Options::frame`]) and one for the whole building (`route_graph.geojson`
-//! at the bundle's top, each node in its storey's frame `<frame>_<folder>` with `-` as `_`).
+//! at the bundle's top, each node in its storey's frame `<frame>_<folder>` with `-` as `_`;
+//! nav2_route moves nodes into its route frame through TF as it loads a graph, so the bundle's
+//! README gives the static transforms to publish for those frames).
 //!
 //! Nodes are `Point` features, `properties`: `id`, `frame`, `metadata` with `kind` (`zone`,
 //! `door`, `landing` or `waypoint`, a corner of a collision-free path), `storey` (name) and

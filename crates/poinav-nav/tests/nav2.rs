@@ -645,6 +645,7 @@ fn the_building_graph_joins_storeys_through_the_lift() {
         "to_frame",
         "overridable: false",
         "map_00_ground_floor",
+        "--z 3.5 --frame-id map --child-frame-id map_01_first_floor",
     ] {
         assert!(readme.contains(key), "{key}");
     }
