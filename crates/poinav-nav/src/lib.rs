@@ -11,7 +11,8 @@
 //! - [`space_name`]: which space a GlobalId, Name, LongName or `Name@Storey` selects
 //!   ([`Building::find_space`]); an ambiguous name is an error listing the candidates.
 //! - [`audit`]: reachability and door statuses per profile, JSON, SVG ([`svg`]) and HTML.
-//! - [`nav2`]: map, masks, filter parameters and route graph for Nav2.
+//! - [`nav2`]: map, masks, filter parameters and route graphs for Nav2 ([`route_graph`]:
+//!   nav2_route GeoJSON per storey and for the building, with operations).
 //!
 //! ```
 //! use glam::DVec2;
@@ -72,6 +73,7 @@ pub mod navigator;
 pub mod polygon;
 pub mod progress;
 pub mod route;
+pub mod route_graph;
 pub mod space_name;
 pub mod speed;
 pub mod svg;

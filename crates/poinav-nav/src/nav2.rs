@@ -14,13 +14,18 @@
 //! - `costmap_filter_info.yaml`: parameters of two costmap_filter_info_server nodes, keepout
 //!   (type 0, base 0, multiplier 1) and speed (type 1, percent: limit = 100 - mask, base 100,
 //!   multiplier -1).
-//! - `route_graph.geojson`: the nav2_route graph: Point nodes (zones, doors, landings and the
-//!   corners of the grid paths between them) and MultiLineString edges (id, startid, endid,
-//!   cost in seconds, overridable, metadata with speed_limit in percent and abs_speed_limit in
-//!   m/s), every edge in both directions, ids unique across nodes and edges.
+//! - `route_graph.geojson`: the storey's nav2_route graph ([`crate::route_graph`]): Point nodes
+//!   (zones, doors, landings and the corners of the grid paths between them, each with its
+//!   storey) and MultiLineString edges (id, startid, endid, cost = seconds at the role speeds,
+//!   overridable, metadata with speed_limit in percent for AdjustSpeedLimit, abs_speed_limit in
+//!   m/s, the roles, zones and doors crossed; an `OpenDoor` TriggerEvent operation on entering
+//!   an edge through a door), every edge in both directions, ids unique across nodes and edges.
 //!
-//! and `README.md` (how to load it) and `topology.json` (the building's graph for the profile)
-//! at the top. Every file is written atomically; the same input gives the same bytes.
+//! and at the top `route_graph.geojson` (the whole building's graph: every storey's in its own
+//! frame plus edges joining storeys through stairs, ramps and lifts, marked with the connection
+//! and its travel time; `CallLift` operations on lifts), `README.md` (how to load it, every
+//! field of the graphs) and `topology.json` (the building's room/door graph for the profile).
+//! Every file is written atomically; the same input gives the same bytes.
 //!
 //! Only where there is something to navigate: each storey's maps cover its own extent (its
 //! spaces, doors and walls, [`crate::extent`]) plus the entrance aprons and
@@ -28,22 +33,19 @@
 //! roof's overhang); a storey without spaces or doors (a roof, an empty level) gets no folder
 //! and is listed in [`BundleSummary::skipped`] with why.
 
-use std::collections::BTreeSet;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use glam::DVec2;
 use poinav_poi::{AccessibilityStatus, RobotProfile};
 use serde::Serialize;
-use serde_json::json;
 
 use crate::audit::slug;
 use crate::building::Building;
 use crate::floor::ObstacleKind;
-use crate::graph::{round6, EdgeKind, NodeKind};
+use crate::graph::round6;
 use crate::grid::{CellState, OccupancyGrid, NONE};
 use crate::navigator::{NavOptions, Navigator};
-use crate::route::{astar_window, simplify, window_of, CellCost};
 use crate::NavError;
 
 /// How the bundle is made.
@@ -118,6 +120,8 @@ pub struct BundleSummary {
     pub storeys: Vec<StoreyBundle>,
     /// Storeys left out, with why.
     pub skipped: Vec<SkippedStorey>,
+    /// The building-wide route graph (`route_graph.geojson` at the top).
+    pub building_graph: crate::route_graph::BuildingGraphCounts,
     /// Every file written.
     pub files: Vec<PathBuf>,
 }
@@ -254,6 +258,7 @@ fn write_storeys(
     let mut files = Vec::new();
     let mut storeys = Vec::new();
     let mut skipped = Vec::new();
+    let mut graphs = Vec::new();
     let n = nav.building.floors.len();
     for (fi, floor) in nav.building.floors.iter().enumerate() {
         progress(crate::progress::Phase::Writing, fi, n);
@@ -321,15 +326,12 @@ fn write_storeys(
             filter_info(&nav.options.speeds).as_bytes(),
         )?;
 
-        let graph = route_graph(nav, fi, options);
-        let n_nodes = graph["features"].as_array().map_or(0, |f| {
-            f.iter()
-                .filter(|x| x["geometry"]["type"] == "Point")
-                .count()
-        });
-        let n_edges = graph["features"].as_array().map_or(0, |f| f.len()) - n_nodes;
-        let text = serde_json::to_string_pretty(&graph).unwrap_or_default() + "\n";
+        let graph = crate::route_graph::storey_graph(nav, fi, options);
+        let (n_nodes, n_edges) = (graph.nodes.len(), graph.edges.len());
+        let json = crate::route_graph::storey_geojson(nav, &graph, options);
+        let text = serde_json::to_string_pretty(&json).unwrap_or_default() + "\n";
         write(&mut files, sub.join("route_graph.geojson"), text.as_bytes())?;
+        graphs.push((graph, folder.clone()));
 
         storeys.push(StoreyBundle {
             floor: floor.name.clone(),
@@ -344,18 +346,22 @@ fn write_storeys(
         });
     }
     progress(crate::progress::Phase::Writing, n, n);
+    let (json, building_graph) = crate::route_graph::building_geojson(nav, &graphs, options);
+    let text = serde_json::to_string_pretty(&json).unwrap_or_default() + "\n";
+    write(&mut files, dir.join("route_graph.geojson"), text.as_bytes())?;
     let topo = nav.topology.to_json(nav.building, &nav.profile);
     let text = serde_json::to_string_pretty(&topo).unwrap_or_default() + "\n";
     write(&mut files, dir.join("topology.json"), text.as_bytes())?;
     write(
         &mut files,
         dir.join("README.md"),
-        readme(nav, options, &storeys, &skipped).as_bytes(),
+        readme(nav, options, &storeys, &skipped, &building_graph).as_bytes(),
     )?;
     Ok(BundleSummary {
         profile: nav.profile.name.clone(),
         storeys,
         skipped,
+        building_graph,
         files,
     })
 }
@@ -443,273 +449,10 @@ speed_filter_info_server:\n  ros__parameters:\n    type: 1\n    filter_info_topi
     )
 }
 
-/// A node of the route graph being built.
-struct GNode {
-    p: DVec2,
-    meta: serde_json::Value,
-}
-
-/// The nav2_route GeoJSON graph of storey `fi`.
+/// The nav2_route GeoJSON graph of storey `fi` ([`crate::route_graph`]).
 pub fn route_graph(nav: &Navigator<'_>, fi: usize, options: &Nav2Options) -> serde_json::Value {
-    let t = &nav.topology;
-    let fnav = &nav.floors[fi];
-    let grid = &fnav.grid;
-    let g = &grid.occupancy;
-    let floor = &nav.building.floors[fi];
-    let costs = CellCost {
-        floor: fnav,
-        base: 1.0 / nav.profile.max_speed_m_s,
-    };
-    let mut nodes: Vec<GNode> = Vec::new();
-    let mut edges: BTreeSet<(usize, usize)> = BTreeSet::new();
-    let mut edge_meta: Vec<((usize, usize), serde_json::Value)> = Vec::new();
-    let mut waypoints: std::collections::BTreeMap<usize, usize> = std::collections::BTreeMap::new();
-    // Topology node -> (graph node, cell).
-    let mut port: Vec<Option<(usize, usize)>> = vec![None; t.nodes.len()];
-    for n in t.nodes.iter().filter(|n| n.floor == fi) {
-        let cell = match n.kind {
-            NodeKind::Zone => nav.zone_cell(fi, n.index),
-            NodeKind::Door => {
-                if !nav.open[n.id] {
-                    continue;
-                }
-                grid.nearest_traversable(n.position(), 0.5)
-            }
-            NodeKind::Landing => {
-                if !nav.open[n.id] {
-                    continue;
-                }
-                grid.nearest_traversable(n.position(), 1.0)
-            }
-        };
-        let Some(cell) = cell else { continue };
-        let mut meta = json!({
-            "kind": n.kind,
-            "element": n.element,
-            "name": n.name,
-        });
-        match n.kind {
-            NodeKind::Door => {
-                let d = &floor.doors[n.index];
-                meta["status"] = json!(nav.status[n.id].0);
-                meta["clear_width_m"] = json!(d.clear_width_m);
-                if d.doorless {
-                    meta["doorless"] = json!(true);
-                }
-            }
-            NodeKind::Landing => {
-                let c = &nav.building.connections[n.index];
-                meta["connection"] = json!(c.kind.label());
-                meta["status"] = json!(nav.status[n.id].0);
-                let others: Vec<&str> = c
-                    .landings
-                    .iter()
-                    .filter(|l| l.floor != fi)
-                    .filter_map(|l| nav.building.floors.get(l.floor).map(|f| f.name.as_str()))
-                    .collect();
-                meta["to_floors"] = json!(others);
-            }
-            NodeKind::Zone => {}
-        }
-        port[n.id] = Some((nodes.len(), cell));
-        nodes.push(GNode {
-            p: g.center(cell),
-            meta,
-        });
-    }
-    // Pairs to join, per zone: its node and its doors and landings ("ports"), each to its
-    // nearest `neighbours` others, plus a minimum spanning tree (by straight distance) so the
-    // zone's part of the graph is connected; zones joined by open boundaries.
-    let mut pairs: BTreeSet<(usize, usize)> = BTreeSet::new();
-    for &zn in &t.zone_nodes[fi] {
-        if port[zn].is_none() {
-            continue;
-        }
-        let mut pts: Vec<usize> = vec![zn];
-        pts.extend(
-            t.adjacency[zn]
-                .iter()
-                .filter(|(e, v)| {
-                    matches!(t.edges[*e].kind, EdgeKind::Door | EdgeKind::Landing)
-                        && port[*v].is_some()
-                })
-                .map(|&(_, v)| v),
-        );
-        let pos = |n: usize| port[n].map_or(DVec2::ZERO, |x| nodes[x.0].p);
-        for &p in &pts {
-            let mut near: Vec<(f64, usize)> = pts
-                .iter()
-                .filter(|&&q| q != p)
-                .map(|&q| (pos(q).distance(pos(p)), q))
-                .collect();
-            near.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-            for &(_, q) in near.iter().take(options.neighbours.max(1)) {
-                pairs.insert((p.min(q), p.max(q)));
-            }
-        }
-        // Prim's tree.
-        let mut in_tree = vec![false; pts.len()];
-        let mut best: Vec<(f64, usize)> = vec![(f64::INFINITY, 0); pts.len()];
-        best[0] = (0.0, 0);
-        for _ in 0..pts.len() {
-            let Some(u) = (0..pts.len())
-                .filter(|&i| !in_tree[i])
-                .min_by(|&a, &b| best[a].0.total_cmp(&best[b].0).then(a.cmp(&b)))
-            else {
-                break;
-            };
-            in_tree[u] = true;
-            if u != 0 {
-                let (x, y) = (pts[u], pts[best[u].1]);
-                pairs.insert((x.min(y), x.max(y)));
-            }
-            for v in 0..pts.len() {
-                let d = pos(pts[u]).distance(pos(pts[v]));
-                if !in_tree[v] && d < best[v].0 {
-                    best[v] = (d, u);
-                }
-            }
-        }
-    }
-    for e in t.edges.iter().filter(|e| e.kind == EdgeKind::Open) {
-        if t.nodes[e.from].floor == fi && port[e.from].is_some() && port[e.to].is_some() {
-            pairs.insert((e.from.min(e.to), e.from.max(e.to)));
-        }
-    }
-    for (a, b) in pairs {
-        let (Some((ga, ca)), Some((gb, cb))) = (port[a], port[b]) else {
-            continue;
-        };
-        // Cells allowed: the zone both ends are in (or, for zones joined by an open
-        // boundary, both zones) and the doors at the ends.
-        let (za, zb) = (zones_of(nav, a, fi), zones_of(nav, b, fi));
-        let shared: BTreeSet<usize> = za.intersection(&zb).copied().collect();
-        let zones = if shared.is_empty() {
-            za.union(&zb).copied().collect()
-        } else {
-            shared
-        };
-        let mut zones_ok = vec![false; floor.zones.len()];
-        for z in zones {
-            zones_ok[z] = true;
-        }
-        let mut doors_ok = vec![false; floor.doors.len()];
-        for n in [a, b] {
-            if t.nodes[n].kind == NodeKind::Door {
-                doors_ok[t.nodes[n].index] = true;
-            }
-        }
-        let allowed = |i: usize| {
-            let z = g.zone[i];
-            let d = g.door[i];
-            (z == NONE || zones_ok[z as usize]) && (d == NONE || doors_ok[d as usize])
-        };
-        let cost = |i: usize| costs.cost(i);
-        // Search only the box around the allowed zones and doors.
-        let window = window_of(floor, g, &zones_ok, &doors_ok, &[ca, cb]);
-        let Some(path) = astar_window(grid, window, ca, cb, allowed, cost, costs.base) else {
-            continue;
-        };
-        let line = simplify(grid, &path, &allowed, &cost);
-        // Corners become waypoint nodes (one per cell, shared by the paths through it).
-        let mut ids = vec![ga];
-        for p in &line[1..line.len().saturating_sub(1)] {
-            let cell = g.cell_of(*p).unwrap_or(usize::MAX);
-            let id = *waypoints.entry(cell).or_insert_with(|| {
-                nodes.push(GNode {
-                    p: *p,
-                    meta: json!({"kind": "waypoint"}),
-                });
-                nodes.len() - 1
-            });
-            ids.push(id);
-        }
-        ids.push(gb);
-        ids.dedup();
-        for w in ids.windows(2) {
-            let (p, q) = (nodes[w[0]].p, nodes[w[1]].p);
-            let mut slowest: f64 = 1.0;
-            let mut zone_names: BTreeSet<String> = BTreeSet::new();
-            let mut door_names: BTreeSet<String> = BTreeSet::new();
-            let len = p.distance(q);
-            let n = ((len / (g.resolution_m / 4.0)).ceil() as usize).max(1);
-            for k in 0..=n {
-                if let Some(i) = g.cell_of(p.lerp(q, k as f64 / n as f64)) {
-                    slowest = slowest.min(fnav.speed(i));
-                    if g.zone[i] != NONE {
-                        let z = &floor.zones[g.zone[i] as usize];
-                        zone_names.insert(
-                            z.name
-                                .clone()
-                                .or_else(|| z.long_name.clone())
-                                .unwrap_or_else(|| z.id.clone()),
-                        );
-                    }
-                    if g.door[i] != NONE {
-                        let d = &floor.doors[g.door[i] as usize];
-                        door_names.insert(d.name.clone().unwrap_or_else(|| d.id.clone()));
-                    }
-                }
-            }
-            let speed = nav.profile.max_speed_m_s * slowest;
-            let meta = json!({
-                "speed_limit": (slowest * 100.0).round(),
-                "abs_speed_limit": round6(speed),
-                "length_m": round6(len),
-                "zones": zone_names,
-                "doors": door_names,
-            });
-            for key in [(w[0], w[1]), (w[1], w[0])] {
-                if edges.insert(key) {
-                    edge_meta.push((key, meta.clone()));
-                }
-            }
-        }
-    }
-    let mut features = Vec::new();
-    for (id, n) in nodes.iter().enumerate() {
-        features.push(json!({
-            "type": "Feature",
-            "geometry": {"type": "Point", "coordinates": [round6(n.p.x), round6(n.p.y)]},
-            "properties": {"id": id, "frame": options.frame, "metadata": n.meta},
-        }));
-    }
-    for (next, ((s, e), meta)) in (nodes.len()..).zip(edge_meta) {
-        let (p, q) = (nodes[s].p, nodes[e].p);
-        let time = meta["length_m"].as_f64().unwrap_or(0.0)
-            / meta["abs_speed_limit"].as_f64().unwrap_or(1.0).max(1e-9);
-        features.push(json!({
-            "type": "Feature",
-            "geometry": {"type": "MultiLineString", "coordinates": [[[round6(p.x), round6(p.y)], [round6(q.x), round6(q.y)]]]},
-            "properties": {
-                "id": next,
-                "startid": s,
-                "endid": e,
-                "cost": round6(time),
-                "overridable": true,
-                "metadata": meta,
-            },
-        }));
-    }
-    json!({
-        "type": "FeatureCollection",
-        "name": format!("{} ({})", floor.name, nav.profile.name),
-        "features": features,
-    })
-}
-
-/// The zones a topology node is in (a zone itself; a door's or landing's zones).
-fn zones_of(nav: &Navigator<'_>, n: usize, fi: usize) -> BTreeSet<usize> {
-    let t = &nav.topology;
-    let node = &t.nodes[n];
-    if node.kind == NodeKind::Zone {
-        return [node.index].into_iter().collect();
-    }
-    t.adjacency[n]
-        .iter()
-        .filter(|(_, v)| t.nodes[*v].kind == NodeKind::Zone && t.nodes[*v].floor == fi)
-        .map(|(_, v)| t.nodes[*v].index)
-        .collect()
+    let graph = crate::route_graph::storey_graph(nav, fi, options);
+    crate::route_graph::storey_geojson(nav, &graph, options)
 }
 
 fn readme(
@@ -717,6 +460,7 @@ fn readme(
     options: &Nav2Options,
     storeys: &[StoreyBundle],
     skipped: &[SkippedStorey],
+    building_graph: &crate::route_graph::BuildingGraphCounts,
 ) -> String {
     let p = &nav.profile;
     let mut s = String::new();
@@ -756,6 +500,7 @@ fn readme(
         .map_or(0.05, |f| f.grid.occupancy.resolution_m);
     let lethal = nav.floors.first().map_or(0.0, |f| f.grid.lethal_radius_m);
     let apron = nav.options.grid.entrance_apron_m;
+    let pct = |f: f64| (f * 100.0).round();
     let _ = write!(
         s,
         "
@@ -780,15 +525,81 @@ fn readme(
 - `costmap_filter_info.yaml`: parameters of the two `costmap_filter_info_server` nodes (keepout:
   type 0, base 0, multiplier 1; speed: type 1 = percent, base 100, multiplier -1, so the filter
   value base + multiplier x mask is the speed limit in percent).
-- `route_graph.geojson`: graph for `nav2_route` (`graph_filepath`): Point nodes (zones, doors,
-  landings, and the corners of collision-free paths between them, in `metadata.kind`) and
-  MultiLineString edges in both directions with `cost` (seconds at the role speed),
-  `overridable: true` and `metadata.speed_limit` (percent, for the AdjustSpeedLimit operation;
-  every edge carries it, so DistanceScorer's ratios stay right) and `metadata.abs_speed_limit`
-  (m/s, for TimeScorer). Ids are unique across nodes and edges. BLOCKED doors have no edges.
+- `route_graph.geojson`: this storey's graph for `nav2_route` (see \"Route graphs\" below),
+  every node in frame `{frame}`.
 
 `topology.json` (here) is the whole building's room/door graph with every door's and
 connection's status and reason for this profile.
+
+## Route graphs
+
+`route_graph.geojson` here is the whole building's graph ({bn} nodes, {be} directed edges of
+which {bl} join storeys); each storey folder has its own. GeoJSON as nav2_route's
+`GeoJsonGraphFileLoader` reads it: `Point` features are nodes, `MultiLineString` features
+directed edges (every edge in both directions); ids are unique across the nodes and edges of a
+file. Closed doors and stairs, ramps or lifts (BLOCKED for this robot, or without room for it)
+have no node and no edge.
+
+Nodes (`properties`): `id`; `frame`: `{frame}` in a storey's file, the storey's own frame
+`{frame}_<folder>` (`-` written `_`, e.g. `{frame}_00_ground_floor`) in the building's file, where
+`metadata.frame` repeats it; `metadata`:
+- `kind`: `zone` (a space: the spot farthest from obstacles in it), `door` (doors and
+  doorless openings), `landing` (where a stair, ramp or lift is entered on a storey) or
+  `waypoint` (a corner of a collision-free path between them);
+- `storey` (name) and `storey_index` (the number in the folder name), on every node;
+- zones, doors and landings: `element` (IFC GlobalId), `name`, `roles` (POI role labels:
+  `A-2`, `B-1`, `B-2`, `C-1`, ...); doors: `status` (AccessibilityStatus for this robot),
+  `clear_width_m`, `doorless`; landings: `connection` (`stair`, `ramp`, `lift`), `status`,
+  `to_floors` (the storeys it leads to).
+
+Edges on a storey (`properties`):
+- `id`, `startid`, `endid`;
+- `cost`: seconds of driving at the role speeds, `cost = sum of l_k / (v_max * f_k)` over the
+  edge cut into pieces `l_k` at most a quarter cell long, `f_k` the speed fraction (the slower
+  of the zone's and the door's, by the roles below) under each piece and `v_max` =
+  {vmax} m/s; on an edge of one speed, `length_m / abs_speed_limit`;
+- `overridable: true` (nav2_route's edge scorers may replace the cost);
+- `metadata.speed_limit`: percent of the robot's maximum speed, the slowest along the edge
+  (B-1 hazard {hz}%, B-2 narrow doors and zones {nr}%, C-1 SPEED_REDUCTION {sr}%, C-1 YIELD
+  {yl}%, C-1 PRIORITY_PASS {pp}%, C-1 without protocol {mr}%; 100 elsewhere). nav2_route's
+  `AdjustSpeedLimit` operation (in the server's default `operations`) publishes it on
+  `speed_limit` each time an edge is entered; it is not listed in `operations` because the
+  server runs it on every edge change by itself and rejects it as a graph operation;
+- `metadata.abs_speed_limit` (the same in m/s), `length_m`, `speed_roles` (the role labels
+  that set the speeds along the edge), `zones` and `doors` (GlobalIds crossed, in order),
+  `zone_names`, `door_names`;
+- `operations`, on an edge that crosses a door (not a doorless opening; not the edge leaving
+  that door's own node): `\"{od} <GlobalId>\": {{\"type\": \"{od}\", \"trigger\": \"ON_ENTER\",
+  \"metadata\": {{\"door_id\": <GlobalId>, \"door_name\": ..., \"service_name\":
+  \"/poinav/doors/d<GlobalId>/open\"}}}}` (in the service name `_` is written `_u` and `$` `_d`:
+  ROS names allow neither `$` nor `__`).
+
+Edges joining storeys (building file only), from a landing to a landing of the same stair,
+ramp or lift: `cost` = its travel time in seconds (the same `poinav route` counts: climbing
+or lift speed and waiting), `overridable: false` (a distance scorer would make a lift free),
+`metadata`: `connection` (`stair`, `ramp`, `lift`), `element`, `name`, `status`,
+`from_storey`, `to_storey`, `to_frame`, `speed_limit` 100; lifts also carry the operation
+`\"{cl} <GlobalId>\": {{\"type\": \"{cl}\", \"trigger\": \"ON_ENTER\", \"metadata\": {{\"lift_id\", \"from_storey\",
+\"to_storey\", \"service_name\": \"/poinav/lifts/l<GlobalId>/call\"}}}}`.
+
+The route server must know every operation `type` in the graph: add the two as
+`TriggerEvent` plugins (each calls the `std_srvs/srv/Trigger` service named in the
+operation's `metadata.service_name`), keeping the defaults:
+
+```yaml
+route_server:
+  ros__parameters:
+    graph_filepath: <bundle>/00-.../route_graph.geojson
+    operations: [\"AdjustSpeedLimit\", \"ReroutingService\", \"{od}\", \"{cl}\"]
+    AdjustSpeedLimit:
+      plugin: \"nav2_route::AdjustSpeedLimit\"
+    ReroutingService:
+      plugin: \"nav2_route::ReroutingService\"
+    {od}:
+      plugin: \"nav2_route::TriggerEvent\"
+    {cl}:
+      plugin: \"nav2_route::TriggerEvent\"
+```
 
 ## Loading it (ROS 2, Nav2)
 
@@ -825,16 +636,61 @@ global_costmap:
         speed_limit_topic: \"speed_limit\"
 ```
 
-and point the route server at the graph: `route_server: ros__parameters: graph_filepath:
-<folder>/route_graph.geojson`.
+and point the route server at a graph (`graph_filepath`, see \"Route graphs\" above).
 
 Several storeys: Nav2 has one map at a time. Load another storey's map with the map server's
 `load_map` service (`ros2 service call /map_server/load_map nav2_msgs/srv/LoadMap
 \"{{map_url: <folder>/map.yaml}}\"`), and the masks and graph likewise; landings of stairs,
-ramps and lifts are route-graph nodes with `metadata.kind = landing` and `to_floors`.
+ramps and lifts are route-graph nodes with `metadata.kind = landing` and `to_floors`. The
+building's `route_graph.geojson` plans across storeys in one search: its edges joining storeys
+say which storey (`to_storey`, `to_frame`) to load when the robot takes them.
 ",
         infl = nav.floors.first().map_or(0.0, |f| f.grid.inflation_radius_m),
         free = options.free_thresh,
+        frame = options.frame,
+        bn = building_graph.nodes,
+        be = building_graph.edges,
+        bl = building_graph.storey_links,
+        vmax = p.max_speed_m_s,
+        hz = pct(nav.options.speeds.hazard),
+        nr = pct(nav.options.speeds.narrow),
+        sr = pct(nav.options.speeds.speed_reduction),
+        yl = pct(nav.options.speeds.yield_protocol),
+        pp = pct(nav.options.speeds.priority_pass),
+        mr = pct(nav.options.speeds.multi_robot),
+        od = crate::route_graph::OPEN_DOOR,
+        cl = crate::route_graph::CALL_LIFT,
     );
+    if !storeys.is_empty() {
+        s.push_str(
+            "
+## Frames of the building graph
+
+nav2_route moves every node into its route frame through TF when it loads a graph, and
+refuses a graph whose frames TF does not know. The storey graphs are all in the map frame;
+for the building's graph, publish each storey's frame from the route frame. The storeys share
+the building's x and y, so only z, the storey's elevation, differs:
+
+```sh
+",
+        );
+        for st in storeys {
+            let floor = st
+                .folder
+                .split('-')
+                .next()
+                .and_then(|i| i.parse::<usize>().ok())
+                .and_then(|i| nav.building.floors.get(i));
+            let _ = writeln!(
+                s,
+                "ros2 run tf2_ros static_transform_publisher --z {} --frame-id {} --child-frame-id {}  # {}",
+                round6(floor.map_or(0.0, |f| f.elevation_m)),
+                options.frame,
+                crate::route_graph::storey_frame(options, &st.folder),
+                st.floor
+            );
+        }
+        s.push_str("```\n");
+    }
     s
 }

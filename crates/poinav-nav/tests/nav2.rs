@@ -15,7 +15,7 @@ use poinav_nav::nav2::{write_bundle, Nav2Options};
 use poinav_nav::{Building, NavOptions, Navigator, RoleSpeeds};
 use poinav_poi::RobotProfile;
 use serde_json::Value;
-use support::{demo, demo_floor, office_floor};
+use support::{demo, demo_floor, office_floor, two_storeys};
 
 /// `key: value` lines of a flat YAML file.
 fn read_yaml(path: &Path) -> BTreeMap<String, String> {
@@ -383,6 +383,42 @@ fn route_graph_is_a_valid_nav2_graph() {
         .filter(|f| f["properties"]["startid"] == d2)
         .all(|f| f["properties"]["metadata"]["speed_limit"].as_f64().unwrap() <= 50.0);
     assert!(slow);
+    // Every edge into that door asks for it to be opened on entry, naming its GlobalId, and
+    // is slowed by its B-2; the edges leaving it do not ask again.
+    let door_id = building.floors[0]
+        .doors
+        .iter()
+        .find(|d| d.name.as_deref() == Some("Door Room 2"))
+        .unwrap()
+        .id
+        .clone();
+    let edges: Vec<&Value> = graph["features"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|f| f["geometry"]["type"] == "MultiLineString")
+        .map(|f| &f["properties"])
+        .collect();
+    let into: Vec<&&Value> = edges.iter().filter(|p| p["endid"] == d2).collect();
+    assert!(into.len() >= 2, "{}", into.len());
+    for p in &into {
+        let op = &p["operations"][format!("OpenDoor {door_id}")];
+        assert_eq!(op["type"], "OpenDoor", "{p}");
+        assert_eq!(op["trigger"], "ON_ENTER");
+        assert_eq!(op["metadata"]["door_id"], door_id.as_str());
+        assert_eq!(
+            op["metadata"]["service_name"],
+            poinav_nav::route_graph::door_service(&door_id)
+        );
+        assert_eq!(p["metadata"]["speed_limit"], 50.0);
+        assert!(p["metadata"]["speed_roles"]
+            .as_array()
+            .unwrap()
+            .contains(&"B-2".into()));
+    }
+    for p in edges.iter().filter(|p| p["startid"] == d2) {
+        assert!(p["operations"].is_null(), "{p}");
+    }
     // README and topology.
     let readme = std::fs::read_to_string(dir.path().join("README.md")).unwrap();
     assert!(readme.contains("load_map") && readme.contains("route_graph.geojson"));
@@ -399,6 +435,11 @@ fn route_graph_is_a_valid_nav2_graph() {
         dir2.path(),
     )
     .unwrap();
+    assert_eq!(
+        std::fs::read(dir.path().join("route_graph.geojson")).unwrap(),
+        std::fs::read(dir2.path().join("route_graph.geojson")).unwrap(),
+        "the building's route graph"
+    );
     for f in [
         "map.pgm",
         "map.yaml",
@@ -523,4 +564,89 @@ fn a_site_is_cropped_away_and_a_storey_with_nothing_to_navigate_is_skipped() {
         readme.contains("- Roof: no spaces or doors (1 other element)"),
         "{readme}"
     );
+}
+
+#[test]
+fn the_building_graph_joins_storeys_through_the_lift() {
+    let building = two_storeys(true);
+    let profile = RobotProfile::paper();
+    let dir = tempfile::tempdir().unwrap();
+    let summary = write_bundle(&building, &profile, &Nav2Options::default(), dir.path()).unwrap();
+    let per_storey: usize = summary.storeys.iter().map(|s| s.graph_nodes).sum();
+    let graph: Value = serde_json::from_str(
+        &std::fs::read_to_string(dir.path().join("route_graph.geojson")).unwrap(),
+    )
+    .unwrap();
+    let features = graph["features"].as_array().unwrap();
+    let nodes: BTreeMap<u64, &Value> = features
+        .iter()
+        .filter(|f| f["geometry"]["type"] == "Point")
+        .map(|f| (f["properties"]["id"].as_u64().unwrap(), &f["properties"]))
+        .collect();
+    assert_eq!(nodes.len(), per_storey);
+    assert_eq!(summary.building_graph.nodes, per_storey);
+    let ids: BTreeSet<u64> = features
+        .iter()
+        .map(|f| f["properties"]["id"].as_u64().unwrap())
+        .collect();
+    assert_eq!(ids.len(), features.len(), "ids unique");
+    // Each storey's nodes in its own frame.
+    for p in nodes.values() {
+        let frame = match p["metadata"]["storey"].as_str().unwrap() {
+            "Ground floor" => "map_00_ground_floor",
+            "First floor" => "map_01_first_floor",
+            other => panic!("storey {other}"),
+        };
+        assert_eq!(p["frame"], frame);
+    }
+    // The lift joins the storeys both ways (the stairs are BLOCKED for wheels: no landing),
+    // at its travel time: 30 s wait + 3.5 m at 1 m/s.
+    let links: Vec<&Value> = features
+        .iter()
+        .filter(|f| f["geometry"]["type"] == "MultiLineString")
+        .map(|f| &f["properties"])
+        .filter(|p| p["metadata"]["connection"].is_string())
+        .collect();
+    assert_eq!(links.len(), 2);
+    assert_eq!(summary.building_graph.storey_links, 2);
+    for p in &links {
+        assert_eq!(p["metadata"]["connection"], "lift");
+        assert_eq!(p["metadata"]["element"], "lift-1");
+        assert_eq!(p["cost"], 33.5);
+        assert_eq!(p["overridable"], false);
+        let (s, e) = (
+            &nodes[&p["startid"].as_u64().unwrap()],
+            &nodes[&p["endid"].as_u64().unwrap()],
+        );
+        assert_eq!(s["metadata"]["kind"], "landing");
+        assert_eq!(e["metadata"]["kind"], "landing");
+        assert_ne!(s["frame"], e["frame"]);
+        assert_eq!(p["metadata"]["to_frame"], e["frame"]);
+        let op = &p["operations"]["CallLift lift-1"];
+        assert_eq!(op["type"], "CallLift");
+        assert_eq!(op["trigger"], "ON_ENTER");
+        assert_eq!(
+            op["metadata"]["service_name"],
+            "/poinav/lifts/llift_x2dx1/call"
+        );
+        assert_eq!(op["metadata"]["to_storey"], e["metadata"]["storey"]);
+    }
+    assert!(!nodes
+        .values()
+        .any(|p| p["metadata"]["element"] == "stair-1"));
+    // The README documents the fields and the operations' plugins.
+    let readme = std::fs::read_to_string(dir.path().join("README.md")).unwrap();
+    for key in [
+        "storey_index",
+        "speed_roles",
+        "nav2_route::TriggerEvent",
+        "OpenDoor",
+        "CallLift",
+        "to_frame",
+        "overridable: false",
+        "map_00_ground_floor",
+        "--z 3.5 --frame-id map --child-frame-id map_01_first_floor",
+    ] {
+        assert!(readme.contains(key), "{key}");
+    }
 }

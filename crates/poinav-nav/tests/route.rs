@@ -9,10 +9,9 @@ use std::cmp::Reverse;
 use std::collections::BinaryHeap;
 
 use glam::DVec2;
-use poinav_nav::building::{ConnectionKind, Landing, VerticalConnection};
 use poinav_nav::{Building, NavError, NavGrid, NavOptions, Navigator, Place, Route};
 use poinav_poi::{Locomotion, RobotProfile};
-use support::{demo, demo_floor, office_floor};
+use support::{demo, demo_floor, office_floor, two_storeys};
 
 /// Shortest 8-connected path length (metres) between two cells over traversable cells: plain
 /// Dijkstra with integer costs (1e6 per axis step, 1414214 per diagonal).
@@ -244,56 +243,6 @@ fn office_routes_across_the_hall_and_around_hazards() {
         .route(&Place::point(None, -0.1, 10.2), &Place::zone("Office 3"))
         .unwrap();
     assert_eq!(door_names(&route), ["Entrance West", "Door Office 3"]);
-}
-
-fn two_storeys(with_lift: bool) -> Building {
-    let ground = demo();
-    let mut first = demo();
-    first.name = "First floor".into();
-    first.elevation_m = 3.5;
-    let mut connections = vec![VerticalConnection {
-        id: "stair-1".into(),
-        name: Some("Stair".into()),
-        kind: ConnectionKind::Stair,
-        landings: vec![
-            Landing {
-                floor: 0,
-                point: DVec2::new(0.8, 5.4),
-            },
-            Landing {
-                floor: 1,
-                point: DVec2::new(0.8, 5.4),
-            },
-        ],
-        clear_width_m: Some(1.2),
-        slope_deg: None,
-        travel_time_s: None,
-    }];
-    if with_lift {
-        connections.push(VerticalConnection {
-            id: "lift-1".into(),
-            name: Some("Lift".into()),
-            kind: ConnectionKind::Lift,
-            landings: vec![
-                Landing {
-                    floor: 0,
-                    point: DVec2::new(11.6, 5.4),
-                },
-                Landing {
-                    floor: 1,
-                    point: DVec2::new(11.6, 5.4),
-                },
-            ],
-            clear_width_m: Some(1.1),
-            slope_deg: None,
-            travel_time_s: None,
-        });
-    }
-    Building {
-        floors: vec![ground, first],
-        connections,
-        levels: vec![],
-    }
 }
 
 #[test]

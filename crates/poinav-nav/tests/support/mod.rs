@@ -8,7 +8,8 @@
 use glam::DVec2;
 use poinav_author::DemoBuilding;
 use poinav_nav::building::width_status;
-use poinav_nav::{Floor, FloorDoor, FloorObstacle, FloorZone, ObstacleKind};
+use poinav_nav::building::{ConnectionKind, Landing, VerticalConnection};
+use poinav_nav::{Building, Floor, FloorDoor, FloorObstacle, FloorZone, ObstacleKind};
 use poinav_poi::{AccessibilityStatus, CoordinationProtocol, RobotProfile, Role};
 
 pub fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Vec<DVec2> {
@@ -382,5 +383,57 @@ pub fn office_floor() -> Floor {
         obstacles,
         doors,
         zones,
+    }
+}
+
+/// The demo floor twice (ground, first floor 3.5 m up) joined by a stair near Room 1 and, if
+/// `with_lift`, a lift near Room 6 (no travel times given: estimated from the heights).
+pub fn two_storeys(with_lift: bool) -> Building {
+    let ground = demo();
+    let mut first = demo();
+    first.name = "First floor".into();
+    first.elevation_m = 3.5;
+    let mut connections = vec![VerticalConnection {
+        id: "stair-1".into(),
+        name: Some("Stair".into()),
+        kind: ConnectionKind::Stair,
+        landings: vec![
+            Landing {
+                floor: 0,
+                point: DVec2::new(0.8, 5.4),
+            },
+            Landing {
+                floor: 1,
+                point: DVec2::new(0.8, 5.4),
+            },
+        ],
+        clear_width_m: Some(1.2),
+        slope_deg: None,
+        travel_time_s: None,
+    }];
+    if with_lift {
+        connections.push(VerticalConnection {
+            id: "lift-1".into(),
+            name: Some("Lift".into()),
+            kind: ConnectionKind::Lift,
+            landings: vec![
+                Landing {
+                    floor: 0,
+                    point: DVec2::new(11.6, 5.4),
+                },
+                Landing {
+                    floor: 1,
+                    point: DVec2::new(11.6, 5.4),
+                },
+            ],
+            clear_width_m: Some(1.1),
+            slope_deg: None,
+            travel_time_s: None,
+        });
+    }
+    Building {
+        floors: vec![ground, first],
+        connections,
+        levels: vec![],
     }
 }
