@@ -69,29 +69,44 @@ impl Default for Behaviour {
 /// frame (depth along the wall normal from the door's centre in the model, offset `u` along the
 /// wall; only its position and orientation are used, not its width), every ray hit
 /// on an obstacle inside the door's depth band (its passage ring projected on the approach axis,
-/// +-5 cm) is a point of the wall around the opening:
+/// from 5 cm before it to its far side) is a point of the wall around the opening:
 ///
 /// - every wall point bounds the half opening on its side from above: far away the +-30 degree
-///   rays hit the face (the nearest depth in the band) at `u = d tan 30`;
+///   rays hit the face (see [`Estimator::face`]) at `u = d tan 30`;
 /// - a ray that then looks through the door crosses the face line inside the opening: its
 ///   offset there bounds the half opening from below (`width = 2 d tan 30` at the switch);
-/// - hits deeper than the face are on the jamb's reveal: their offset is the jamb itself.
+/// - hits deeper than the face (and short of the far side) are on the jamb's reveal: their
+///   offset is the jamb itself.
 ///
 /// Each side's half width is its innermost wall point when that lies on the reveal, else the
-/// middle of its bounds (error at most half the distance a ray's face point moves in one step:
-/// 2.4 cm at 5 m/s); the two halves add up to the estimate. It is reported once both angled rays have hit
-/// the wall on their side and then looked through the door, and again whenever it changes by
-/// more than 1 mm.
+/// middle of its bounds once they are at most [`MAX_BRACKET_M`] apart (error at most 2.5 cm);
+/// the two halves add up to the estimate. Nothing is reported before both jambs are measured
+/// so (a loose bracket far from the door could say 2.4 m for a 0.77 m door and lift its B-2),
+/// and again whenever the estimate changes by more than 1 mm.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Estimator {
     door: u32,
     origin: DVec2,
     axis: DVec2,
     band: (f64, f64),
-    /// Depth of the wall face: the nearest in-band hit.
+    /// Depth of the opening's far side (its ring's deepest point): a hit deeper than the face
+    /// is on the jamb's reveal only before it; beyond it lies whatever meets the wall on the
+    /// other side (a room's side wall starting at the far face), not the jamb.
+    far: f64,
+    /// Depth of the opening's near side (its ring's nearest point).
+    near: f64,
+    /// Depth of the wall face: the nearest in-band hit of the front and +-30 degree rays, but
+    /// never before the opening's near side (which it is until such a hit). The +-90 degree rays are left out, and the near
+    /// side bounds it: a perpendicular wall far to the side, hit a few centimetres before the
+    /// face, would otherwise make every face point look like the reveal.
     face: f64,
-    /// Per side (0 left, 1 right): the innermost wall point (|u|, depth).
-    inner: [(f64, f64); 2],
+    /// True once a hit has set `face`.
+    face_seen: bool,
+    /// Per side (0 left, 1 right): the innermost wall point, |u|.
+    inner: [f64; 2],
+    /// Per side: the innermost hit on the jamb's reveal (deeper than the face, short of the far
+    /// side), |u|: the jamb itself.
+    reveal: [f64; 2],
     /// Per side: the largest face-line offset of a ray that looked through the door.
     lower: [f64; 2],
     best: Option<f64>,
@@ -110,8 +125,12 @@ impl Estimator {
             origin: centre,
             axis,
             band: (lo - 0.05, hi + 0.05),
-            face: f64::INFINITY,
-            inner: [(f64::INFINITY, 0.0); 2],
+            far: hi,
+            near: lo,
+            face: lo,
+            face_seen: false,
+            reveal: [f64::INFINITY; 2],
+            inner: [f64::INFINITY; 2],
             lower: [f64::NEG_INFINITY; 2],
             best: None,
         }
@@ -120,16 +139,28 @@ impl Estimator {
     /// Adds one reading taken at `pos`; returns a new estimate to report.
     fn update(&mut self, pos: DVec2, reading: &Reading) -> Option<f64> {
         let lat = self.axis.perp();
-        for (ray, dir) in reading.rays.iter().zip(reading.dirs) {
+        for (k, (ray, dir)) in reading.rays.iter().zip(reading.dirs).enumerate() {
             if let Target::Obstacle(_) = ray.target {
                 let rel = pos + dir * ray.dist - self.origin;
                 let depth = rel.dot(self.axis);
-                if depth >= self.band.0 && depth <= self.band.1 {
+                // Up to the far side only: beyond it the hits are on what meets the wall there.
+                if depth >= self.band.0 && depth <= self.far + 0.005 {
                     let u = rel.dot(lat);
                     let side = usize::from(u < 0.0);
-                    self.face = self.face.min(depth);
-                    if u.abs() < self.inner[side].0 {
-                        self.inner[side] = (u.abs(), depth);
+                    if k != LEFT && k != RIGHT {
+                        // The first hit sets the face (never before the near side); later hits
+                        // only move it nearer.
+                        self.face = if self.face_seen {
+                            self.face.min(depth)
+                        } else {
+                            depth
+                        }
+                        .max(self.near);
+                        self.face_seen = true;
+                    }
+                    self.inner[side] = self.inner[side].min(u.abs());
+                    if depth > self.face + 0.01 && depth < self.far - 0.01 {
+                        self.reveal[side] = self.reveal[side].min(u.abs());
                     }
                 }
             }
@@ -139,12 +170,14 @@ impl Estimator {
                 let t = (self.face - (pos - self.origin).dot(self.axis)) / along;
                 let u = (pos + dir * t - self.origin).dot(lat);
                 let side = usize::from(u < 0.0);
-                if t >= 0.0 && self.face.is_finite() && u.abs() < self.inner[side].0 {
+                if t >= 0.0 && self.face.is_finite() && u.abs() < self.inner[side] {
                     self.lower[side] = self.lower[side].max(u.abs());
                 }
             }
         }
-        let est = self.estimate()?;
+        // To the millimetre: five rays do not resolve less, and a door of exactly the required
+        // width must not read 0.8999 m and lose its FULL_ACCESS to rounding.
+        let est = (self.estimate()? * 1000.0).round() / 1000.0;
         if self.best.is_none_or(|b| (est - b).abs() > 0.001) {
             self.best = Some(est);
             return Some(est);
@@ -152,20 +185,30 @@ impl Estimator {
         None
     }
 
-    /// The current estimate, once both sides are bracketed.
+    /// The current estimate, once both jambs are measured: each side's innermost wall point is
+    /// on the reveal (the jamb itself), or its bracket between the last wall point and the
+    /// first look through the door is at most [`MAX_BRACKET_M`] wide. A looser bracket is no
+    /// evidence of the width (far from the door the angled rays bound it only loosely), so it
+    /// gives no estimate at all rather than a guess.
     pub fn estimate(&self) -> Option<f64> {
         let mut width = 0.0;
         for side in 0..2 {
-            let (upper, depth) = self.inner[side];
+            let upper = self.inner[side];
             let lower = self.lower[side].min(upper);
+            // A hit on the reveal (deeper than the face, short of the far side) is the jamb
+            // itself, as long as nothing was seen further in.
+            let reveal = self.reveal[side];
+            if reveal.is_finite() && reveal <= upper + 0.001 {
+                width += reveal;
+                continue;
+            }
             if !lower.is_finite() || !upper.is_finite() {
                 return None;
             }
-            // On the reveal (deeper than the face) the innermost point is the jamb itself.
-            width += if depth > self.face + 1e-6 {
-                upper
-            } else {
+            width += if upper - lower <= MAX_BRACKET_M {
                 0.5 * (lower + upper)
+            } else {
+                return None;
             };
         }
         Some(width)
@@ -177,6 +220,11 @@ impl Estimator {
     }
 }
 
+/// Widest bracket (metres) of a jamb's position that counts as a measurement: a half width
+/// known to 2.5 cm. At 5 m/s and 60 Hz an angled ray's face point moves 4.8 cm per step, so a
+/// head-on approach at any cruise speed brackets each jamb tightly enough.
+pub const MAX_BRACKET_M: f64 = 0.05;
+
 /// Algorithm 1's memory for one robot.
 #[derive(Debug, Clone)]
 pub struct Mind {
@@ -187,6 +235,8 @@ pub struct Mind {
     /// Current zone.
     pub zone: Option<u32>,
     keep: Option<WallPd>,
+    /// The single-lane door it is waiting at for another robot, if any.
+    door_wait: Option<u32>,
 }
 
 impl Mind {
@@ -198,6 +248,7 @@ impl Mind {
             c2: false,
             zone: None,
             keep: None,
+            door_wait: None,
         }
     }
 }
@@ -307,6 +358,69 @@ impl Sink<'_> {
 fn has_priority(robots: &[Robot], me: usize, other: usize) -> bool {
     let (a, b) = (robots[me].priority, robots[other].priority);
     a > b || (a == b && me < other)
+}
+
+/// A robot waits for a single-lane door while another uses it from the other side, this far from
+/// the door's centre (metres): room for the other to come out.
+pub const DOOR_HOLD_M: f64 = 1.8;
+/// A robot that waited for a door goes on once the other is this far from its centre
+/// (metres), on whichever side.
+pub const DOOR_CLEAR_M: f64 = 1.3;
+/// Robots farther than this from a door's centre (metres) do not contend for it.
+pub const DOOR_CONFLICT_M: f64 = 3.0;
+
+/// The doors robot `me` must give way at: each door within [`DOOR_CONFLICT_M`] ahead of it
+/// (centre within 50 degrees of its heading), too narrow for two robots side by side, that
+/// another robot on its other side (or in it) is coming through, nearer to its centre than
+/// `me` (on a tie within 5 cm, the one with priority goes). Robots share their poses (as for
+/// C-1), so the two decide from the same facts: exactly one of them waits, never both, never
+/// neither. `held` is the door it waited at in the last step: it keeps waiting there even when
+/// that door has left its heading's cone (a robot driving along a corridor sees a side door
+/// turn away as it nears it). Returns the nearest such door and the distance to it.
+fn door_wait(me: usize, env: &Env<'_>, held: Option<u32>) -> Option<(u32, f64)> {
+    let robot = &env.robots[me];
+    let lim = &robot.limits;
+    let pos = robot.state.pos;
+    let dir = robot.dir();
+    let cone = 50f64.to_radians().cos();
+    let mut nearest: Option<(u32, f64)> = None;
+    for (d, door) in env.floor.doors.iter().enumerate() {
+        let Some(axis) = env.nav.doors[d].axis else {
+            continue;
+        };
+        let to = door.center - pos;
+        let mine = to.length();
+        let in_cone = to.dot(dir) >= cone * mine || held == Some(d as u32);
+        if !(1e-9..=DOOR_CONFLICT_M).contains(&mine) || !in_cone {
+            continue;
+        }
+        let my_side = -to.dot(axis);
+        let waits = env.robots.iter().enumerate().any(|(r, o)| {
+            if r == me {
+                return false;
+            }
+            let side_by_side = 2.0 * (lim.half_width + o.limits.half_width) + 3.0 * lim.margin;
+            let rel = o.state.pos - door.center;
+            let theirs = rel.length();
+            if door.clear_width_m >= side_by_side || theirs > DOOR_CONFLICT_M {
+                return false;
+            }
+            let in_door = rel.dot(axis).abs() <= 0.3
+                && rel.dot(axis.perp()).abs() <= 0.5 * door.clear_width_m;
+            let other_side = rel.dot(axis) * my_side < 0.0 || in_door;
+            let coming = in_door || o.dir().dot(-rel) > 0.0;
+            let they_go = theirs + 0.05 < mine
+                || ((theirs - mine).abs() <= 0.05 && !has_priority(env.robots, me, r));
+            // Once waiting, wait until the other has also cleared the door on this side (it
+            // turns there, sweeping its corners).
+            let clearing = held == Some(d as u32) && theirs < DOOR_CLEAR_M;
+            (other_side && coming && they_go) || clearing
+        });
+        if waits && nearest.is_none_or(|n| mine < n.1) {
+            nearest = Some((d as u32, mine));
+        }
+    }
+    nearest
 }
 
 /// A clearance measurement Algorithm 1 made for a door, to be applied to the POI database (rule
@@ -466,6 +580,23 @@ pub fn perceive(
         let v_door = lim.max_speed * factor;
         let gap = (s - lim.half_length).max(0.0);
         cap = cap.min((v_door * v_door + 2.0 * brake * gap).sqrt());
+        // A door narrower than the robot (as measured, else as modelled) is not driven into:
+        // stop a margin before its near side, whatever the command (keys included).
+        let measured = mind
+            .estimator
+            .as_ref()
+            .filter(|e| e.door == d)
+            .and_then(Estimator::estimate);
+        let width = measured.unwrap_or(env.floor.doors[d as usize].clear_width_m);
+        if width < 2.0 * lim.half_width + 0.01 {
+            let near = env.floor.doors[d as usize]
+                .ring
+                .iter()
+                .map(|p| (*p - pos).dot(dir))
+                .fold(f64::INFINITY, f64::min);
+            let free = (near - lim.half_length - lim.margin).max(0.0);
+            cap = cap.min((2.0 * brake * free).sqrt());
+        }
     }
     let pending = sensor_clearance(me, reading, env, db, mind, &ahead).map(|(rec, estimate_m)| {
         PendingClearance {
@@ -527,6 +658,13 @@ pub fn perceive(
             }
         }
     }
+    // C-2 at a single-lane door (any zone): of two robots about to use one door from its two
+    // sides, the nearer one goes and the other waits outside DOOR_HOLD_M.
+    mind.door_wait = door_wait(me, env, mind.door_wait).map(|(d, mine)| {
+        c2 = true;
+        cap = cap.min((2.0 * brake * (mine - DOOR_HOLD_M).max(0.0)).sqrt());
+        d
+    });
     if c2 {
         roles.insert(Role::RobotInteraction);
     }

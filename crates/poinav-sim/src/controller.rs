@@ -250,6 +250,8 @@ impl WallPd {
 #[derive(Debug, Clone, PartialEq)]
 pub struct Follower {
     wps: Vec<DVec2>,
+    /// Per waypoint, the clear width of the door it passes through (empty: none known).
+    widths: Vec<Option<f64>>,
     k: usize,
     prev: DVec2,
     cruise: f64,
@@ -260,16 +262,29 @@ pub struct Follower {
 impl Follower {
     /// Heading error above which the robot turns in place instead of driving.
     pub const TURN_IN_PLACE_DEG: f64 = 15.0;
+    /// The same on the straight through a tight door.
+    pub const PASSAGE_TURN_IN_PLACE_DEG: f64 = 3.0;
+    /// A door is tight when it leaves the robot less than this much room in all (metres).
+    pub const TIGHT_M: f64 = 0.25;
 
     /// Follows `wps` from `start`.
     pub fn new(start: DVec2, wps: Vec<DVec2>, cruise: f64) -> Follower {
         Follower {
             arrived: wps.is_empty(),
             wps,
+            widths: Vec::new(),
             k: 0,
             prev: start,
             cruise,
         }
+    }
+
+    /// The same, knowing the clear width of the door each waypoint passes through
+    /// ([`NavGraph::waypoint_widths`]): through a door with little room to spare the robot
+    /// keeps to the door's axis and drives only once aligned.
+    pub fn with_widths(mut self, widths: Vec<Option<f64>>) -> Follower {
+        self.widths = widths;
+        self
     }
 
     /// The waypoints.
@@ -301,9 +316,36 @@ impl Follower {
         }
         let wp = self.wps[self.k];
         let to = wp - pos;
-        let err = wrap_angle(to.y.atan2(to.x) - heading);
+        // Through a tight door (the lead point, the centre and the exit are on the door's axis,
+        // less than TIGHT_M to spare): keep to the line, not just aim at the point, and drive
+        // only once aligned within PASSAGE_TURN_IN_PLACE_DEG; a robot 7 cm narrower than the
+        // door has 3.5 cm a side.
+        let tight = self
+            .widths
+            .get(self.k)
+            .copied()
+            .flatten()
+            .is_some_and(|w| w - 2.0 * lim.half_width < Self::TIGHT_M);
+        let passage = tight && self.k + 1 < n && {
+            let (a, b) = (wp - self.prev, self.wps[self.k + 1] - wp);
+            a.length() > 1e-9 && b.length() > 1e-9 && a.angle_to(b).abs() < 1f64.to_radians()
+        };
+        let (err, in_place) = if passage {
+            let u = (wp - self.prev).normalize();
+            let cross = (pos - self.prev).dot(u.perp());
+            let desired = u.y.atan2(u.x) - (2.0 * cross).atan();
+            (
+                wrap_angle(desired - heading),
+                Self::PASSAGE_TURN_IN_PLACE_DEG,
+            )
+        } else {
+            (
+                wrap_angle(to.y.atan2(to.x) - heading),
+                Self::TURN_IN_PLACE_DEG,
+            )
+        };
         let omega = (5.0 * err).clamp(-lim.max_turn, lim.max_turn);
-        let mut v = if err.abs() > Self::TURN_IN_PLACE_DEG.to_radians() {
+        let mut v = if err.abs() > in_place.to_radians() {
             0.0
         } else {
             self.cruise * err.cos()
@@ -398,11 +440,10 @@ impl Controller {
         lead: f64,
     ) -> Controller {
         Controller {
-            kind: Kind::Route(Follower::new(
-                start,
-                nav.waypoints(start, doors, to, lead),
-                cruise,
-            )),
+            kind: Kind::Route(
+                Follower::new(start, nav.waypoints(start, doors, to, lead), cruise)
+                    .with_widths(nav.waypoint_widths(doors)),
+            ),
             target: Some(to),
         }
     }
@@ -526,10 +567,12 @@ impl Controller {
                     let s = (centre - c.pos).dot(dir);
                     if s <= 0.02 {
                         let mut wps = c.nav.waypoints(c.pos, doors, *to, lim.half_length + 0.5);
+                        let mut widths = c.nav.waypoint_widths(doors);
                         if c.nav.doors[*door as usize].axis.is_some() {
                             wps.remove(0);
+                            widths.remove(0);
                         }
-                        let mut f = Follower::new(c.pos, wps, *cruise);
+                        let mut f = Follower::new(c.pos, wps, *cruise).with_widths(widths);
                         let cmd = f.command(c.pos, c.heading, lim);
                         *then = Some(f);
                         return cmd;
