@@ -8,13 +8,21 @@
 //! (arrays of role codes) and `AccessibilityStatus` (when assessed). Storey nodes carry
 //! `GlobalId`, `IfcClass` (`IfcBuildingStorey`) and `Elevation` (metres).
 //!
-//! Geometry: one mesh with one triangle primitive per element that has triangles; `POSITION`
-//! (f32, with the `min`/`max` glTF requires), flat `NORMAL`s (a vertex is shared only by
-//! triangles of the same plane: architecture has sharp edges) and `u32` indices. All data
-//! sits in one buffer with three buffer views (positions, normals, indices), each 4-byte
-//! aligned. One material per distinct colour (`pbrMetallicRoughness`, metallic 0, roughness
-//! 1, double-sided, `BLEND` when not opaque); IFC colours are sRGB and are converted to the
-//! linear `baseColorFactor`.
+//! Geometry ([`GlbOptions`]): one mesh with one triangle primitive per element that has
+//! triangles, except that an element whose geometry is a rigid copy of an earlier element's
+//! (found by [`crate::instances`]: mapped items placed again, moved, rotated or mirrored)
+//! references that element's mesh, its node's `rotation` and `scale` (-1 in x for a mirror)
+//! placing it. Flat `NORMAL`s (a vertex is shared only by triangles of the same plane:
+//! architecture has sharp edges). By default the geometry is quantised
+//! (`KHR_mesh_quantization`, required): `POSITION` as `SHORT` integers (with integer
+//! `min`/`max`) in steps of [`crate::quantise::position_step`], which the node's uniform
+//! `scale` undoes, `NORMAL` as normalised `BYTE`s, indices `u16` where a mesh has fewer than
+//! 65,535 vertices; [`GlbOptions::PLAIN`] writes `f32` positions and normals and `u32`
+//! indices, no extension and one mesh per element, for readers without the extension. All data
+//! sits in one buffer with up to four buffer views (positions, normals, `u32` and `u16`
+//! indices), each 4-byte aligned. One material per distinct colour (`pbrMetallicRoughness`,
+//! metallic 0, roughness 1, double-sided, `BLEND` when not opaque); IFC colours are sRGB and
+//! are converted to the linear `baseColorFactor`.
 //!
 //! The JSON is written with `serde_json` rather than the `gltf-json` crate: the subset written
 //! is small and fixed, `serde_json` is already a dependency, and `gltf-json` would add a
@@ -28,7 +36,11 @@ use std::path::Path;
 use rustc_hash::FxHashMap;
 use serde_json::{json, Map, Value};
 
+use glam::{DMat3, DQuat, DVec3};
+
+use crate::instances::{Instances, Placement};
 use crate::palette::srgb_to_linear;
+use crate::quantise;
 use crate::scene::{prepare_with, Element, SceneInput};
 use crate::ExportError;
 
@@ -41,8 +53,12 @@ pub const CHUNK_BIN: u32 = 0x004E_4942;
 
 const ARRAY_BUFFER: u32 = 34962;
 const ELEMENT_ARRAY_BUFFER: u32 = 34963;
-const FLOAT: u32 = 5126;
+const BYTE: u32 = 5120;
+const SHORT: u32 = 5122;
+const UNSIGNED_SHORT: u32 = 5123;
 const UNSIGNED_INT: u32 = 5125;
+const FLOAT: u32 = 5126;
+const KHR_MESH_QUANTIZATION: &str = "KHR_mesh_quantization";
 
 /// `asset.generator`: `poinav <version>`.
 pub fn generator() -> String {
@@ -92,19 +108,110 @@ fn flatten(e: &mut Element<'_>, seen: &mut FxHashMap<(u32, [u32; 3]), u32>) -> F
     f
 }
 
-/// A prepared GLB: its JSON chunk (padded) and the element geometry its BIN chunk holds.
+/// How the GLB is written.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct GlbOptions {
+    /// Elements whose geometry is a rigid copy of an earlier element's (mapped items: the
+    /// same furniture placed many times) reference that element's mesh instead of a copy.
+    pub share_copies: bool,
+    /// `KHR_mesh_quantization`: 16-bit integer positions (the node's scale holds the step),
+    /// normalised 8-bit normals, 16-bit indices where a mesh has fewer than 65,535 vertices.
+    pub quantise: bool,
+}
+
+impl GlbOptions {
+    /// Every element its own mesh, `f32` positions and normals, `u32` indices: what any
+    /// glTF 2.0 reader opens, with no extension.
+    pub const PLAIN: GlbOptions = GlbOptions {
+        share_copies: false,
+        quantise: false,
+    };
+    /// Shared copies and quantised geometry: the default, about a third of the plain size
+    /// on furnished models.
+    pub const COMPACT: GlbOptions = GlbOptions {
+        share_copies: true,
+        quantise: true,
+    };
+}
+
+impl Default for GlbOptions {
+    fn default() -> Self {
+        GlbOptions::COMPACT
+    }
+}
+
+/// Where each part of the BIN chunk starts, and how each mesh is encoded.
+struct Layout {
+    quantise: bool,
+    /// Per mesh: the position step (1 when not quantised) and whether its indices are `u32`.
+    steps: Vec<f64>,
+    wide: Vec<bool>,
+    /// Lengths in bytes of the positions, normals, `u32` indices and `u16` indices.
+    parts: [usize; 4],
+}
+
+impl Layout {
+    fn new(flats: &[Flat], quantise: bool) -> Layout {
+        let steps: Vec<f64> = flats
+            .iter()
+            .map(|f| {
+                if quantise {
+                    quantise::position_step(&f.positions)
+                } else {
+                    1.0
+                }
+            })
+            .collect();
+        let wide: Vec<bool> = flats
+            .iter()
+            .map(|f| !quantise || f.positions.len() >= usize::from(u16::MAX))
+            .collect();
+        let n_pos: usize = flats.iter().map(|f| f.positions.len()).sum();
+        let idx = |w: bool| -> usize {
+            flats
+                .iter()
+                .zip(&wide)
+                .filter(|(_, &x)| x == w)
+                .map(|(f, _)| f.indices.len())
+                .sum()
+        };
+        let parts = if quantise {
+            [n_pos * 8, n_pos * 4, idx(true) * 4, idx(false) * 2]
+        } else {
+            [n_pos * 12, n_pos * 12, idx(true) * 4, 0]
+        };
+        Layout {
+            quantise,
+            steps,
+            wide,
+            parts,
+        }
+    }
+
+    /// Byte offset of part `k` in the BIN chunk.
+    fn at(&self, k: usize) -> usize {
+        self.parts[..k].iter().sum()
+    }
+
+    /// Unpadded length of the BIN chunk's data.
+    fn bin_len(&self) -> usize {
+        self.parts.iter().sum()
+    }
+}
+
+/// A prepared GLB: its JSON chunk (padded) and the distinct meshes its BIN chunk holds.
 struct Document {
     json: Vec<u8>,
     flats: Vec<Flat>,
-    /// Unpadded length of the BIN chunk's data.
-    bin_len: usize,
+    layout: Layout,
 }
 
 impl Document {
-    /// Prepares `scene`: each element is localised and flattened in turn, so the scene's
-    /// geometry is held once (as [`Flat`]s), and the JSON is serialised.
-    fn new(scene: &SceneInput<'_>) -> Document {
-        let (value, flats, bin_len) = json_and_flats(scene);
+    /// Prepares `scene`: each element is localised and flattened in turn (or recognised as a
+    /// copy of an earlier one), so the scene's geometry is held once, and the JSON is
+    /// serialised.
+    fn new(scene: &SceneInput<'_>, options: GlbOptions) -> Document {
+        let (value, flats, layout) = json_and_flats(scene, options);
         let mut json = serde_json::to_vec(&value).expect("serialising JSON to memory");
         drop(value);
         while json.len() % 4 != 0 {
@@ -113,22 +220,24 @@ impl Document {
         Document {
             json,
             flats,
-            bin_len,
+            layout,
         }
     }
 
     /// Total GLB length in bytes.
     fn len(&self) -> usize {
-        let bin = if self.bin_len == 0 {
+        let bin_len = self.layout.bin_len();
+        let bin = if bin_len == 0 {
             0
         } else {
-            8 + self.bin_len.next_multiple_of(4)
+            8 + bin_len.next_multiple_of(4)
         };
         12 + 8 + self.json.len() + bin
     }
 
     /// Writes the GLB: a 12-byte header, the JSON chunk (padded with spaces to 4 bytes) and,
-    /// when there is geometry, the BIN chunk (positions, normals, indices; padded with zeros).
+    /// when there is geometry, the BIN chunk (positions, normals, `u32` then `u16` indices;
+    /// padded with zeros).
     fn write(&self, w: &mut impl Write) -> std::io::Result<()> {
         let mut head = Vec::with_capacity(28);
         head.extend_from_slice(&GLB_MAGIC.to_le_bytes());
@@ -138,27 +247,51 @@ impl Document {
         head.extend_from_slice(&CHUNK_JSON.to_le_bytes());
         w.write_all(&head)?;
         w.write_all(&self.json)?;
-        if self.bin_len == 0 {
+        let bin_len = self.layout.bin_len();
+        if bin_len == 0 {
             return Ok(());
         }
-        let padded = self.bin_len.next_multiple_of(4);
+        let padded = bin_len.next_multiple_of(4);
         head.clear();
         head.extend_from_slice(&(padded as u32).to_le_bytes());
         head.extend_from_slice(&CHUNK_BIN.to_le_bytes());
         w.write_all(&head)?;
         let mut buf = ChunkBuffer::new(w);
-        for f in &self.flats {
-            buf.f32s(f.positions.iter().flatten())?;
+        let l = &self.layout;
+        if l.quantise {
+            for (f, &step) in self.flats.iter().zip(&l.steps) {
+                for p in &f.positions {
+                    let [x, y, z] = quantise::position(*p, step);
+                    for c in [x, y, z, 0] {
+                        buf.bytes(&c.to_le_bytes())?;
+                    }
+                }
+            }
+            for f in &self.flats {
+                for n in &f.normals {
+                    let [x, y, z] = quantise::normal(*n);
+                    buf.bytes(&[x as u8, y as u8, z as u8, 0])?;
+                }
+            }
+        } else {
+            for f in &self.flats {
+                buf.f32s(f.positions.iter().flatten())?;
+            }
+            for f in &self.flats {
+                buf.f32s(f.normals.iter().flatten())?;
+            }
         }
-        for f in &self.flats {
-            buf.f32s(f.normals.iter().flatten())?;
-        }
-        for f in &self.flats {
+        for (f, _) in self.flats.iter().zip(&l.wide).filter(|(_, &w)| w) {
             for i in &f.indices {
                 buf.bytes(&i.to_le_bytes())?;
             }
         }
-        buf.bytes(&[0; 3][..padded - self.bin_len])?;
+        for (f, _) in self.flats.iter().zip(&l.wide).filter(|(_, &w)| !w) {
+            for &i in &f.indices {
+                buf.bytes(&(i as u16).to_le_bytes())?;
+            }
+        }
+        buf.bytes(&[0; 3][..padded - bin_len])?;
         buf.flush()
     }
 }
@@ -201,56 +334,177 @@ impl<'w, W: Write> ChunkBuffer<'w, W> {
     }
 }
 
-/// The glTF JSON document, the flattened geometry and the BIN data's length.
-fn json_and_flats(scene: &SceneInput<'_>) -> (Value, Vec<Flat>, usize) {
-    let mut flats = Vec::with_capacity(scene.elements.len());
+/// Which mesh an element node shows, and where (`None` for an element without triangles).
+struct Use {
+    mesh: usize,
+    /// Relative to the mesh's own element; `None` for that element itself.
+    placement: Option<Placement>,
+}
+
+/// The node properties (`translation`, `rotation`, `scale`) that put mesh vertices, in
+/// steps of `step`, where `placement` (when a copy) and `translation` put them.
+fn node_transform(
+    node: &mut Map<String, Value>,
+    translation: DVec3,
+    placement: Option<&Placement>,
+    step: f64,
+) {
+    let (t, linear) = match placement {
+        Some(p) => (translation + p.offset, p.linear),
+        None => (translation, DMat3::IDENTITY),
+    };
+    if t != DVec3::ZERO {
+        node.insert("translation".into(), json!(t.to_array()));
+    }
+    // An orthogonal map is a rotation, or a rotation after mirroring x.
+    let (rotation, sign) = if linear.determinant() < 0.0 {
+        (
+            linear * DMat3::from_diagonal(DVec3::new(-1.0, 1.0, 1.0)),
+            -1.0,
+        )
+    } else {
+        (linear, 1.0)
+    };
+    if rotation != DMat3::IDENTITY {
+        let mut q = DQuat::from_mat3(&rotation).normalize();
+        if q.w < 0.0 {
+            q = -q;
+        }
+        node.insert("rotation".into(), json!(q.to_array()));
+    }
+    if sign != 1.0 || step != 1.0 {
+        node.insert("scale".into(), json!([sign * step, step, step]));
+    }
+}
+
+/// The glTF JSON document, the distinct meshes' flattened geometry and the BIN layout.
+fn json_and_flats(scene: &SceneInput<'_>, options: GlbOptions) -> (Value, Vec<Flat>, Layout) {
+    let mut flats: Vec<Flat> = Vec::new();
+    let mut mesh_names: Vec<(String, usize)> = Vec::new();
+    let mut uses: Vec<Option<Use>> = Vec::with_capacity(scene.elements.len());
+    let mut copies = Instances::default();
     let mut seen = FxHashMap::default();
-    let p = prepare_with(scene, |e| flats.push(flatten(e, &mut seen)));
-    drop(seen);
-    let n_pos: usize = flats.iter().map(|f| f.positions.len()).sum();
-    let n_idx: usize = flats.iter().map(|f| f.indices.len()).sum();
-    let normals_at = n_pos * 12;
-    let indices_at = normals_at + n_pos * 12;
-    let bin_len = indices_at + n_idx * 4;
+    let p = prepare_with(scene, |e| {
+        if e.triangles.is_empty() {
+            uses.push(None);
+            return;
+        }
+        if options.share_copies {
+            if let Some((mesh, placement)) = copies.find(e.material, &e.positions, &e.triangles) {
+                e.positions = Vec::new();
+                e.triangles = Vec::new();
+                e.normals = Vec::new();
+                uses.push(Some(Use {
+                    mesh,
+                    placement: Some(placement),
+                }));
+                return;
+            }
+            copies.add(
+                flats.len(),
+                e.material,
+                e.positions.clone(),
+                e.triangles.clone(),
+            );
+        }
+        uses.push(Some(Use {
+            mesh: flats.len(),
+            placement: None,
+        }));
+        mesh_names.push((e.label.clone(), e.material));
+        flats.push(flatten(e, &mut seen));
+    });
+    drop((seen, copies));
+    let layout = Layout::new(&flats, options.quantise);
+    let bin_len = layout.bin_len();
+
+    // Buffer views: positions, normals, u32 indices, u16 indices; empty ones left out.
+    let mut views = Vec::new();
+    let mut view_of = [usize::MAX; 4];
+    for (k, &len) in layout.parts.iter().enumerate() {
+        if len == 0 {
+            continue;
+        }
+        view_of[k] = views.len();
+        let mut view = json!({"buffer": 0, "byteOffset": layout.at(k), "byteLength": len});
+        match (k, layout.quantise) {
+            (0, false) | (1, false) => view["byteStride"] = json!(12),
+            (0, true) => view["byteStride"] = json!(8),
+            (1, true) => view["byteStride"] = json!(4),
+            _ => {}
+        }
+        view["target"] = json!(if k < 2 {
+            ARRAY_BUFFER
+        } else {
+            ELEMENT_ARRAY_BUFFER
+        });
+        views.push(view);
+    }
 
     let mut accessors = Vec::new();
     let mut meshes = Vec::new();
-    let mut mesh_of = vec![None; flats.len()];
-    let (mut pos_off, mut idx_off) = (0usize, 0usize);
-    for (i, (f, e)) in flats.iter().zip(&p.elements).enumerate() {
-        if f.indices.is_empty() {
-            continue;
-        }
-        let (mut lo, mut hi) = ([f32::INFINITY; 3], [f32::NEG_INFINITY; 3]);
-        for v in &f.positions {
-            for k in 0..3 {
-                lo[k] = lo[k].min(v[k]);
-                hi[k] = hi[k].max(v[k]);
-            }
-        }
+    let (pos_size, nrm_size) = if layout.quantise { (8, 4) } else { (12, 12) };
+    let (mut pos_off, mut idx32_off, mut idx16_off) = (0usize, 0usize, 0usize);
+    for (m, (f, (label, material))) in flats.iter().zip(&mesh_names).enumerate() {
         let a = accessors.len();
-        accessors.push(json!({
-            "bufferView": 0, "byteOffset": pos_off * 12, "componentType": FLOAT,
-            "count": f.positions.len(), "type": "VEC3",
-            "min": lo.map(num), "max": hi.map(num),
-        }));
-        accessors.push(json!({
-            "bufferView": 1, "byteOffset": pos_off * 12, "componentType": FLOAT,
-            "count": f.positions.len(), "type": "VEC3",
-        }));
-        accessors.push(json!({
-            "bufferView": 2, "byteOffset": idx_off * 4, "componentType": UNSIGNED_INT,
-            "count": f.indices.len(), "type": "SCALAR",
-        }));
+        if layout.quantise {
+            let step = layout.steps[m];
+            let (mut lo, mut hi) = ([i16::MAX; 3], [i16::MIN; 3]);
+            for v in &f.positions {
+                let q = quantise::position(*v, step);
+                for k in 0..3 {
+                    lo[k] = lo[k].min(q[k]);
+                    hi[k] = hi[k].max(q[k]);
+                }
+            }
+            accessors.push(json!({
+                "bufferView": view_of[0], "byteOffset": pos_off * pos_size,
+                "componentType": SHORT, "count": f.positions.len(), "type": "VEC3",
+                "min": lo, "max": hi,
+            }));
+            accessors.push(json!({
+                "bufferView": view_of[1], "byteOffset": pos_off * nrm_size,
+                "componentType": BYTE, "normalized": true,
+                "count": f.positions.len(), "type": "VEC3",
+            }));
+        } else {
+            let (mut lo, mut hi) = ([f32::INFINITY; 3], [f32::NEG_INFINITY; 3]);
+            for v in &f.positions {
+                for k in 0..3 {
+                    lo[k] = lo[k].min(v[k]);
+                    hi[k] = hi[k].max(v[k]);
+                }
+            }
+            accessors.push(json!({
+                "bufferView": view_of[0], "byteOffset": pos_off * pos_size,
+                "componentType": FLOAT, "count": f.positions.len(), "type": "VEC3",
+                "min": lo.map(num), "max": hi.map(num),
+            }));
+            accessors.push(json!({
+                "bufferView": view_of[1], "byteOffset": pos_off * nrm_size,
+                "componentType": FLOAT, "count": f.positions.len(), "type": "VEC3",
+            }));
+        }
+        if layout.wide[m] {
+            accessors.push(json!({
+                "bufferView": view_of[2], "byteOffset": idx32_off * 4,
+                "componentType": UNSIGNED_INT, "count": f.indices.len(), "type": "SCALAR",
+            }));
+            idx32_off += f.indices.len();
+        } else {
+            accessors.push(json!({
+                "bufferView": view_of[3], "byteOffset": idx16_off * 2,
+                "componentType": UNSIGNED_SHORT, "count": f.indices.len(), "type": "SCALAR",
+            }));
+            idx16_off += f.indices.len();
+        }
         pos_off += f.positions.len();
-        idx_off += f.indices.len();
-        mesh_of[i] = Some(meshes.len());
         meshes.push(json!({
-            "name": e.label,
+            "name": label,
             "primitives": [{
                 "attributes": {"POSITION": a, "NORMAL": a + 1},
                 "indices": a + 2,
-                "material": e.material,
+                "material": material,
             }],
         }));
     }
@@ -270,7 +524,7 @@ fn json_and_flats(scene: &SceneInput<'_>) -> (Value, Vec<Flat>, usize) {
         roots.push(gi);
         let mut node = Map::new();
         node.insert("name".into(), json!(g.label));
-        if g.origin != glam::DVec3::ZERO {
+        if g.origin != DVec3::ZERO {
             node.insert("translation".into(), json!(g.origin.to_array()));
         }
         if !g.elements.is_empty() {
@@ -295,11 +549,16 @@ fn json_and_flats(scene: &SceneInput<'_>) -> (Value, Vec<Flat>, usize) {
             let e = &p.elements[i];
             let mut node = Map::new();
             node.insert("name".into(), json!(e.label));
-            if let Some(m) = mesh_of[i] {
-                node.insert("mesh".into(), json!(m));
-            }
-            if e.translation != glam::DVec3::ZERO {
-                node.insert("translation".into(), json!(e.translation.to_array()));
+            match &uses[i] {
+                Some(u) => {
+                    node.insert("mesh".into(), json!(u.mesh));
+                    let step = layout.steps[u.mesh];
+                    node_transform(&mut node, e.translation, u.placement.as_ref(), step);
+                }
+                None if e.translation != DVec3::ZERO => {
+                    node.insert("translation".into(), json!(e.translation.to_array()));
+                }
+                None => {}
             }
             let mut extras = Map::new();
             extras.insert("GlobalId".into(), json!(e.source.global_id));
@@ -347,6 +606,10 @@ fn json_and_flats(scene: &SceneInput<'_>) -> (Value, Vec<Flat>, usize) {
         "asset".into(),
         json!({"version": "2.0", "generator": generator()}),
     );
+    if layout.quantise && bin_len > 0 {
+        doc.insert("extensionsUsed".into(), json!([KHR_MESH_QUANTIZATION]));
+        doc.insert("extensionsRequired".into(), json!([KHR_MESH_QUANTIZATION]));
+    }
     doc.insert("scene".into(), json!(0));
     let mut scene_obj = Map::new();
     scene_obj.insert("name".into(), json!("poinav"));
@@ -364,42 +627,50 @@ fn json_and_flats(scene: &SceneInput<'_>) -> (Value, Vec<Flat>, usize) {
     put("materials", materials);
     put("accessors", accessors);
     if bin_len > 0 {
+        put("bufferViews", views);
+        // The BIN chunk's length: `u16` indices may end 2 bytes short of it.
         put(
-            "bufferViews",
-            vec![
-                json!({"buffer": 0, "byteOffset": 0, "byteLength": normals_at,
-                       "byteStride": 12, "target": ARRAY_BUFFER}),
-                json!({"buffer": 0, "byteOffset": normals_at,
-                       "byteLength": indices_at - normals_at,
-                       "byteStride": 12, "target": ARRAY_BUFFER}),
-                json!({"buffer": 0, "byteOffset": indices_at,
-                       "byteLength": bin_len - indices_at,
-                       "target": ELEMENT_ARRAY_BUFFER}),
-            ],
+            "buffers",
+            vec![json!({"byteLength": bin_len.next_multiple_of(4)})],
         );
-        put("buffers", vec![json!({"byteLength": bin_len})]);
     }
-    (Value::Object(doc), flats, bin_len)
+    (Value::Object(doc), flats, layout)
 }
 
-/// The glTF JSON of `scene` alone (the document the GLB's JSON chunk holds).
+/// The glTF JSON of `scene` alone (the document the GLB's JSON chunk holds), as
+/// [`to_glb`] writes it.
 pub fn to_gltf_json(scene: &SceneInput<'_>) -> serde_json::Value {
-    json_and_flats(scene).0
+    json_and_flats(scene, GlbOptions::default()).0
 }
 
-/// The GLB bytes of `scene`: a 12-byte header, the JSON chunk (padded with spaces to 4 bytes)
-/// and, when there is geometry, the BIN chunk (padded with zeros to 4 bytes).
+/// The GLB bytes of `scene` ([`GlbOptions::COMPACT`]): a 12-byte header, the JSON chunk
+/// (padded with spaces to 4 bytes) and, when there is geometry, the BIN chunk (padded with
+/// zeros to 4 bytes).
 pub fn to_glb(scene: &SceneInput<'_>) -> Vec<u8> {
-    let doc = Document::new(scene);
+    to_glb_with(scene, GlbOptions::default())
+}
+
+/// Like [`to_glb`], written as `options` say.
+pub fn to_glb_with(scene: &SceneInput<'_>, options: GlbOptions) -> Vec<u8> {
+    let doc = Document::new(scene, options);
     let mut out = Vec::with_capacity(doc.len());
     doc.write(&mut out).expect("writing to memory");
     out
 }
 
-/// Writes the GLB of `scene` to `path` atomically, streaming the geometry to the file (the
-/// whole GLB is never built in memory).
+/// Writes the GLB of `scene` ([`GlbOptions::COMPACT`]) to `path` atomically, streaming the
+/// geometry to the file (the whole GLB is never built in memory).
 pub fn write_glb(path: &Path, scene: &SceneInput<'_>) -> Result<(), ExportError> {
-    let doc = Document::new(scene);
+    write_glb_with(path, scene, GlbOptions::default())
+}
+
+/// Like [`write_glb`], written as `options` say.
+pub fn write_glb_with(
+    path: &Path,
+    scene: &SceneInput<'_>,
+    options: GlbOptions,
+) -> Result<(), ExportError> {
+    let doc = Document::new(scene, options);
     poinav_ifc::output::write_atomic_with(path, |w| doc.write(w)).map_err(|e| ExportError::Write {
         path: path.display().to_string(),
         message: e.to_string(),

@@ -5,8 +5,10 @@
 pub mod fbx;
 pub mod glb;
 pub mod ids;
+pub mod instances;
 pub mod palette;
 pub mod plan_svg;
+pub mod quantise;
 pub mod scene;
 pub mod semantic_csv;
 

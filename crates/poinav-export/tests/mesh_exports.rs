@@ -3,8 +3,9 @@
 //! one without a storey, one far from the origin, a classified door) is exported, the GLB is
 //! run through the Khronos glTF-Validator (`tests/js/validate-gltf.cjs`, 0 errors and 0
 //! warnings) and the FBX through assimp (`assimp info`: one mesh per element with triangles,
-//! node names carrying the GlobalIds, the structure and bounds assimp reads from the GLB), and both are read back to check hierarchy, metadata,
-//! the Y-up frame and the geometry. Missing tools fail the test, naming the install command
+//! node names carrying the GlobalIds, the structure and bounds assimp reads from the plain GLB),
+//! and both are read back to check hierarchy, metadata, the Y-up frame and the geometry (the
+//! default GLB's shared, quantised meshes decoded and placed as a glTF reader does). Missing tools fail the test, naming the install command
 //! (`bash tests/js/setup.sh`).
 
 mod common;
@@ -13,6 +14,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use glam::DVec3;
+use poinav_export::glb::GlbOptions;
 use poinav_export::scene::{z_up_to_y_up, NO_STOREY};
 use poinav_export::{fbx, glb, SceneInput};
 use poinav_geom::{ElementMesh, Mesh};
@@ -263,20 +265,66 @@ fn glb_json(bytes: &[u8]) -> Value {
     serde_json::from_slice(&bytes[20..20 + len]).unwrap()
 }
 
-/// A GLB accessor's floats (tightly packed VEC3 in the BIN chunk).
+/// A GLB accessor's VEC3 values as read: `f32`, or quantised (`SHORT` positions as the
+/// integers stored, normalised `BYTE`s divided by 127), at the buffer view's stride.
 fn vec3s(bytes: &[u8], json: &Value, accessor: usize) -> Vec<DVec3> {
     let json_len = u32::from_le_bytes(bytes[12..16].try_into().unwrap()) as usize;
     let bin = &bytes[20 + json_len + 8..];
     let a = &json["accessors"][accessor];
     let view = &json["bufferViews"][a["bufferView"].as_u64().unwrap() as usize];
     let start = (view["byteOffset"].as_u64().unwrap() + a["byteOffset"].as_u64().unwrap()) as usize;
-    let f = |i: usize| f64::from(f32::from_le_bytes(bin[i..i + 4].try_into().unwrap()));
+    let (size, read): (usize, &dyn Fn(usize) -> f64) = match a["componentType"].as_u64().unwrap() {
+        5126 => (4, &|i| {
+            f64::from(f32::from_le_bytes(bin[i..i + 4].try_into().unwrap()))
+        }),
+        5122 => (2, &|i| {
+            f64::from(i16::from_le_bytes(bin[i..i + 2].try_into().unwrap()))
+        }),
+        5120 => {
+            assert_eq!(a["normalized"], true, "signed bytes are normalised normals");
+            (1, &|i| f64::from(bin[i] as i8) / 127.0)
+        }
+        t => panic!("component type {t}"),
+    };
+    let stride = view["byteStride"].as_u64().map_or(3 * size, |s| s as usize);
     (0..a["count"].as_u64().unwrap() as usize)
         .map(|k| {
-            let at = start + 12 * k;
-            DVec3::new(f(at), f(at + 4), f(at + 8))
+            let at = start + stride * k;
+            DVec3::new(read(at), read(at + size), read(at + 2 * size))
         })
         .collect()
+}
+
+/// A node's `translation`, `rotation` and `scale` (identity where absent) applied to `p`.
+fn node_transform(node: &Value, p: DVec3) -> DVec3 {
+    let f = |k: &str, i: usize, d: f64| node.get(k).map_or(d, |a| a[i].as_f64().unwrap());
+    let t = DVec3::new(
+        f("translation", 0, 0.0),
+        f("translation", 1, 0.0),
+        f("translation", 2, 0.0),
+    );
+    let r = glam::DQuat::from_xyzw(
+        f("rotation", 0, 0.0),
+        f("rotation", 1, 0.0),
+        f("rotation", 2, 0.0),
+        f("rotation", 3, 1.0),
+    );
+    let s = DVec3::new(f("scale", 0, 1.0), f("scale", 1, 1.0), f("scale", 2, 1.0));
+    t + r * (s * p)
+}
+
+/// The world (Y up) vertices of element node `n` under group node `g`, decoded and
+/// dequantised as a glTF reader does, and the largest error quantisation allows there.
+fn world_vertices(bytes: &[u8], json: &Value, g: &Value, n: &Value) -> (Vec<DVec3>, f64) {
+    let m = n["mesh"].as_u64().unwrap() as usize;
+    let prim = &json["meshes"][m]["primitives"][0];
+    let acc = prim["attributes"]["POSITION"].as_u64().unwrap() as usize;
+    let step = n.get("scale").map_or(0.0, |s| s[1].as_f64().unwrap());
+    let ps = vec3s(bytes, json, acc)
+        .into_iter()
+        .map(|p| node_transform(g, node_transform(n, p)))
+        .collect();
+    (ps, step * 0.87 + 1e-6)
 }
 
 fn tmp() -> tempfile::TempDir {
@@ -295,7 +343,33 @@ fn glb_passes_the_khronos_validator_with_one_node_per_element() {
     glb::write_glb(&glb_path, &scene(&b)).unwrap();
     let bytes = std::fs::read(&glb_path).unwrap();
     assert_eq!(bytes, glb::to_glb(&scene(&b)), "write_glb writes to_glb");
-    assert_eq!(bytes, glb::to_glb(&scene(&b)), "deterministic");
+    assert_eq!(
+        bytes,
+        glb::to_glb_with(&scene(&b), GlbOptions::COMPACT),
+        "compact by default"
+    );
+    check_building_glb(GlbOptions::COMPACT);
+    check_building_glb(GlbOptions::PLAIN);
+}
+
+/// The building's GLB written as `options` say: the validator's verdict, the hierarchy, the
+/// metadata and the geometry read back.
+fn check_building_glb(options: GlbOptions) {
+    let b = building();
+    let dir = tmp();
+    let (glb_path, _) = outputs(dir.path());
+    glb::write_glb_with(&glb_path, &scene(&b), options).unwrap();
+    let bytes = std::fs::read(&glb_path).unwrap();
+    assert_eq!(
+        bytes,
+        glb::to_glb_with(&scene(&b), options),
+        "write_glb_with writes to_glb_with"
+    );
+    assert_eq!(
+        bytes,
+        glb::to_glb_with(&scene(&b), options),
+        "deterministic"
+    );
 
     let report = &gltf_validator(&[&glb_path])[0];
     let issues = &report["issues"];
@@ -361,40 +435,30 @@ fn glb_passes_the_khronos_validator_with_one_node_per_element() {
             let Some(m) = n["mesh"].as_u64() else {
                 continue;
             };
-            // World bounds (Y up) = storey translation + node translation + accessor bounds.
-            let prim = &json["meshes"][m as usize]["primitives"][0];
-            let acc = &json["accessors"][prim["attributes"]["POSITION"].as_u64().unwrap() as usize];
-            let t = |n: &Value| {
-                n.get("translation")
-                    .map(|t| {
-                        DVec3::new(
-                            t[0].as_f64().unwrap(),
-                            t[1].as_f64().unwrap(),
-                            t[2].as_f64().unwrap(),
-                        )
-                    })
-                    .unwrap_or(DVec3::ZERO)
-            };
-            let at = |k: &str| {
-                DVec3::new(
-                    acc[k][0].as_f64().unwrap(),
-                    acc[k][1].as_f64().unwrap(),
-                    acc[k][2].as_f64().unwrap(),
-                )
-            };
-            let offset = t(&nodes[gi]) + t(n);
+            // World bounds (Y up) of the vertices as a reader places them: storey node, then
+            // element node (translation, rotation, scale: the quantisation step).
+            let (world, tolerance) = world_vertices(&bytes, &json, &nodes[gi], n);
             let (lo, hi) = e.mesh.bounds().unwrap();
             let (a, c) = (z_up_to_y_up(lo), z_up_to_y_up(hi));
             let want_lo = a.min(c);
             let want_hi = a.max(c);
+            let got_lo = world.iter().fold(DVec3::INFINITY, |m, p| m.min(*p));
+            let got_hi = world.iter().fold(DVec3::NEG_INFINITY, |m, p| m.max(*p));
             assert!(
-                (offset + at("min") - want_lo).abs().max_element() < 1e-6,
-                "{guid}"
+                (got_lo - want_lo).length() < tolerance,
+                "{guid} {options:?}: {got_lo} {want_lo}"
             );
             assert!(
-                (offset + at("max") - want_hi).abs().max_element() < 1e-6,
-                "{guid}"
+                (got_hi - want_hi).length() < tolerance,
+                "{guid} {options:?}: {got_hi} {want_hi}"
             );
+            if options == GlbOptions::PLAIN {
+                assert!(tolerance <= 1e-6);
+            } else {
+                // 1/32767 of the half-size: under 0.1 mm for these boxes.
+                assert!(tolerance < 1e-4, "{guid}: {tolerance}");
+            }
+            let prim = &json["meshes"][m as usize]["primitives"][0];
             // Flat normals: every normal is one of the six axis directions of a box.
             let normals = vec3s(
                 &bytes,
@@ -455,14 +519,19 @@ fn glb_edge_cases_pass_the_validator() {
     ];
     let dir = tmp();
     let mut files = Vec::new();
-    for (i, elements) in cases.iter().enumerate() {
+    let options = [GlbOptions::COMPACT, GlbOptions::PLAIN];
+    for (i, (elements, options)) in cases
+        .iter()
+        .flat_map(|c| options.map(|o| (c, o)))
+        .enumerate()
+    {
         let path = dir.path().join(format!("case{i}.glb"));
         let s = SceneInput {
             storeys: &[],
             elements,
             poi: None,
         };
-        glb::write_glb(&path, &s).unwrap();
+        glb::write_glb_with(&path, &s, options).unwrap();
         let json = glb_json(&std::fs::read(&path).unwrap());
         let groups = usize::from(!elements.is_empty());
         assert_eq!(
@@ -483,6 +552,122 @@ fn glb_edge_cases_pass_the_validator() {
             "{}: {:#}",
             r["file"], r["issues"]["messages"]
         );
+    }
+}
+
+/// A chair's mesh (an irregular solid: a box with one corner raised) moved by `t` after `m`,
+/// keeping the vertex order, as the mesh of a mapped item placed again is.
+fn chair(m: glam::DMat3, t: DVec3) -> Mesh {
+    let mut mesh = cuboid(v(0.0, 0.0, 0.0), v(0.5, 0.45, 0.9));
+    mesh.positions[7].z += 0.2;
+    for p in &mut mesh.positions {
+        *p = m * *p + t;
+    }
+    mesh
+}
+
+#[test]
+fn glb_copies_share_one_mesh_and_land_where_their_elements_are() {
+    use glam::{DMat3, DQuat};
+    let turn = DMat3::from_quat(DQuat::from_rotation_z(0.6));
+    let mirror = turn * DMat3::from_diagonal(DVec3::new(1.0, -1.0, 1.0));
+    let meshes = [
+        chair(DMat3::IDENTITY, v(1.0, 1.0, 0.0)),
+        chair(DMat3::IDENTITY, v(4.0, 1.5, 0.0)),
+        chair(turn, v(2.0, 5.0, 3.0)),
+        chair(mirror, v(-3.0, 2.0, 0.0)),
+        // Stretched: not a copy.
+        chair(
+            DMat3::from_diagonal(DVec3::new(1.2, 1.0, 1.0)),
+            v(7.0, 0.0, 0.0),
+        ),
+        // Same shape, another colour: its own mesh.
+        chair(DMat3::IDENTITY, v(9.0, 0.0, 0.0)),
+    ];
+    let elements: Vec<ElementMesh> = meshes
+        .iter()
+        .enumerate()
+        .map(|(i, m)| {
+            let colour = (i == 5).then_some([0.2, 0.2, 0.8, 1.0]);
+            let guid = format!("3Chair{i:017}");
+            element(
+                i as u64 + 1,
+                &guid,
+                "IfcFurniture",
+                None,
+                Some(L0),
+                m.clone(),
+                colour,
+            )
+        })
+        .collect();
+    let b = building();
+    let s = SceneInput {
+        storeys: &b.storeys[..1],
+        elements: &elements,
+        poi: None,
+    };
+    let dir = tmp();
+    let mut files = Vec::new();
+    for (options, distinct) in [(GlbOptions::COMPACT, 3), (GlbOptions::PLAIN, 6)] {
+        let path = dir.path().join(format!("chairs-{}.glb", files.len()));
+        glb::write_glb_with(&path, &s, options).unwrap();
+        let bytes = std::fs::read(&path).unwrap();
+        let json = glb_json(&bytes);
+        assert_eq!(
+            json["meshes"].as_array().unwrap().len(),
+            distinct,
+            "{options:?}"
+        );
+        let nodes = json["nodes"].as_array().unwrap();
+        for (i, e) in elements.iter().enumerate() {
+            let n = &nodes[1 + i];
+            assert_eq!(n["extras"]["GlobalId"], e.global_id.as_str());
+            // Every vertex where the input has it (the mesh's own vertex order is kept).
+            let (world, tolerance) = world_vertices(&bytes, &json, &nodes[0], n);
+            for p in &e.mesh.positions {
+                let want = z_up_to_y_up(*p);
+                let d = world
+                    .iter()
+                    .map(|w| (*w - want).length())
+                    .fold(f64::MAX, f64::min);
+                assert!(d < tolerance, "{options:?} chair {i}: {want} off by {d}");
+            }
+        }
+        if options == GlbOptions::COMPACT {
+            assert_eq!(nodes[2]["mesh"], nodes[1]["mesh"]);
+            assert!(nodes[2].get("rotation").is_none(), "only moved");
+            assert_eq!(nodes[3]["mesh"], nodes[1]["mesh"]);
+            assert!(nodes[3]["rotation"].is_array(), "turned");
+            assert_eq!(nodes[4]["mesh"], nodes[1]["mesh"]);
+            assert!(nodes[4]["scale"][0].as_f64().unwrap() < 0.0, "mirrored");
+            assert_ne!(nodes[5]["mesh"], nodes[1]["mesh"]);
+            assert_ne!(nodes[6]["mesh"], nodes[1]["mesh"]);
+            assert_eq!(
+                json["extensionsRequired"],
+                serde_json::json!(["KHR_mesh_quantization"])
+            );
+        } else {
+            assert!(json.get("extensionsUsed").is_none());
+        }
+        files.push(path);
+    }
+    let paths: Vec<&Path> = files.iter().map(PathBuf::as_path).collect();
+    for r in gltf_validator(&paths) {
+        assert_eq!(r["issues"]["numErrors"], 0, "{:#}", r["issues"]["messages"]);
+        assert_eq!(
+            r["issues"]["numWarnings"], 0,
+            "{:#}",
+            r["issues"]["messages"]
+        );
+        // The validator counts one draw call per primitive of a mesh, however many nodes
+        // show it.
+        let distinct = if r["file"].as_str().unwrap().ends_with("-0.glb") {
+            3
+        } else {
+            6
+        };
+        assert_eq!(r["info"]["drawCallCount"], distinct);
     }
 }
 
@@ -577,7 +762,8 @@ fn fbx_opens_in_assimp_with_one_mesh_per_element() {
 
     // The GLB of the same scene, read by the same importer, has the same structure and bounds.
     let glb_path = dir.path().join("building.glb");
-    glb::write_glb(&glb_path, &scene(&b)).unwrap();
+    // Plain: assimp 5.2 reads the structure of quantised GLBs but not the dequantising scale.
+    glb::write_glb_with(&glb_path, &scene(&b), GlbOptions::PLAIN).unwrap();
     let from_glb = assimp_info(&glb_path, true);
     for label in ["Meshes:", "Nodes:", "Faces:"] {
         assert_eq!(count(&from_glb, label), count(&info, label), "{label}");

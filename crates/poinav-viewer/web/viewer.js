@@ -155,6 +155,10 @@ function applyCut() {
   renderer.clippingPlanes = xray ? [] : [cutPlane];
   capGroup.position.y = elevation + cutHeight - 0.01;
   capGroup.visible = !xray;
+  // Elements wholly above the plane are not drawn at all: the plane would clip all of them,
+  // but software WebGL would still pay for their vertices.
+  const cutY = elevation + cutHeight;
+  for (const [object, bottom] of elementBottoms) object.visible = xray || bottom < cutY;
   $('cut-value').textContent = `${cutHeight.toFixed(1)} m`;
   hook.cut_m = cutHeight;
   hook.xray = xray;
@@ -179,6 +183,7 @@ scene.add(capGroup);
 let doorGroup = new THREE.Group(); // door and doorway passages on the floor, coloured by status
 scene.add(doorGroup);
 const doorMeshes = new Map(); // door GlobalId -> mesh
+const elementBottoms = []; // [element node, lowest y of its meshes in the scene's frame]
 let poiView = false;
 
 function elementColour(data) {
@@ -312,6 +317,12 @@ async function loadBuilding(info) {
     elementsById.set(d.GlobalId, { object: o, meshes, originals: meshes.map((m) => m.material) });
   });
   hook.elements = elementsById.size;
+  for (const { object, meshes } of elementsById.values()) {
+    if (!meshes.length) continue;
+    const box = new THREE.Box3().setFromObject(object);
+    elementBottoms.push([object, box.min.y - scene.position.y]);
+  }
+  applyCut();
   const box = new THREE.Box3().setFromObject(gltf.scene);
   if (!info.bounds && !box.isEmpty()) {
     bounds = { min: [box.min.x, -box.max.z], max: [box.max.x, -box.min.z] };

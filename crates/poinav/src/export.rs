@@ -39,6 +39,10 @@ pub struct MeshArgs {
     /// Leave POI data out of the metadata.
     #[arg(long)]
     no_poi: bool,
+    /// GLB only: one mesh per element, `f32` positions and normals, no extension (for readers
+    /// without `KHR_mesh_quantization`); the default shares copies' meshes and quantises.
+    #[arg(long)]
+    plain: bool,
 }
 
 /// Runs `poinav export ...`.
@@ -81,7 +85,14 @@ pub fn run(export: &Export) -> anyhow::Result<ExitCode> {
     };
     crate::progress::stage("writing");
     match format {
-        "glb" => poinav_export::glb::write_glb(&args.output, &scene),
+        "glb" => {
+            let options = if args.plain {
+                poinav_export::glb::GlbOptions::PLAIN
+            } else {
+                poinav_export::glb::GlbOptions::COMPACT
+            };
+            poinav_export::glb::write_glb_with(&args.output, &scene, options)
+        }
         _ => poinav_export::fbx::write_fbx(&args.output, &scene),
     }?; // The error names the file and the cause.
     crate::progress::end();
