@@ -40,7 +40,9 @@ fn scalar<'py>(py: Python<'py>, s: &TypedScalar) -> PyResult<Bound<'py, PyAny>> 
         Scalar::Real(r) => r.into_pyobject(py)?.into_any(),
         Scalar::Integer(i) => i.into_pyobject(py)?.into_any(),
         Scalar::Bool(b) => b.into_pyobject(py)?.to_owned().into_any(),
-        Scalar::Logical(l) => l.into_pyobject(py)?.into_any(),
+        Scalar::Logical(Some(b)) => b.into_pyobject(py)?.to_owned().into_any(),
+        // IfcOpenShell's spelling of the third logical value.
+        Scalar::Logical(None) => "UNKNOWN".into_pyobject(py)?.into_any(),
         Scalar::Ref(id) => id.0.into_pyobject(py)?.into_any(),
     })
 }
