@@ -19,8 +19,9 @@ cargo build --quiet -p poinav --locked
 
 rm -rf "$venv"
 "$root/.venv/bin/python" -m venv "$venv"
-"$venv/bin/python" -m pip install --quiet --disable-pip-version-check \
-    -r scripts/requirements-test.txt "$wheels"/poinav-*.whl
+purelib='import sysconfig; print(sysconfig.get_paths()["purelib"])'
+"$root/.venv/bin/python" -c "$purelib" > "$("$venv/bin/python" -c "$purelib")/_poinav_test_packages.pth"
+"$venv/bin/python" -m pip install --quiet --disable-pip-version-check "$wheels"/poinav-*.whl
 
 export POINAV_SHARED="${POINAV_SHARED:-$root/../shared}"
 export POINAV_CLI="$root/target/debug/poinav"
