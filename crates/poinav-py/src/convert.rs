@@ -4,8 +4,27 @@
 use numpy::ndarray::Array2;
 use numpy::IntoPyArray;
 use poinav_ifc::property::{Property, PropertyValue, Scalar, TypedScalar};
+use std::collections::HashMap;
+
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyList, PyTuple};
+use pyo3::types::{PyDict, PyList, PyString, PyTuple};
+
+/// Python strings made once per distinct text: property and set names repeat across a
+/// model's products, and making each anew was most of the conversion's time.
+#[derive(Debug, Default)]
+pub struct Strings<'a, 'py> {
+    made: HashMap<&'a str, Bound<'py, PyString>>,
+}
+
+impl<'a, 'py> Strings<'a, 'py> {
+    /// The Python string of `s`.
+    pub fn get(&mut self, py: Python<'py>, s: &'a str) -> Bound<'py, PyString> {
+        self.made
+            .entry(s)
+            .or_insert_with(|| PyString::new(py, s))
+            .clone()
+    }
+}
 
 /// A JSON value as Python objects (dicts, lists, str, int, float, bool, None).
 pub fn json<'py>(py: Python<'py>, value: &serde_json::Value) -> PyResult<Bound<'py, PyAny>> {
@@ -34,9 +53,13 @@ pub fn array2<'py, T: numpy::Element>(
     Ok(a.into_pyarray(py).into_any())
 }
 
-fn scalar<'py>(py: Python<'py>, s: &TypedScalar) -> PyResult<Bound<'py, PyAny>> {
+fn scalar<'a, 'py>(
+    py: Python<'py>,
+    s: &'a TypedScalar,
+    strings: &mut Strings<'a, 'py>,
+) -> PyResult<Bound<'py, PyAny>> {
     Ok(match &s.value {
-        Scalar::Text(t) | Scalar::Enum(t) => t.into_pyobject(py)?.into_any(),
+        Scalar::Text(t) | Scalar::Enum(t) => strings.get(py, t).into_any(),
         Scalar::Real(r) => r.into_pyobject(py)?.into_any(),
         Scalar::Integer(i) => i.into_pyobject(py)?.into_any(),
         Scalar::Bool(b) => b.into_pyobject(py)?.to_owned().into_any(),
@@ -47,38 +70,53 @@ fn scalar<'py>(py: Python<'py>, s: &TypedScalar) -> PyResult<Bound<'py, PyAny>> 
     })
 }
 
-fn scalars<'py>(py: Python<'py>, list: &[TypedScalar]) -> PyResult<Bound<'py, PyAny>> {
+fn scalars<'a, 'py>(
+    py: Python<'py>,
+    list: &'a [TypedScalar],
+    strings: &mut Strings<'a, 'py>,
+) -> PyResult<Bound<'py, PyAny>> {
     let items = list
         .iter()
-        .map(|s| scalar(py, s))
+        .map(|s| scalar(py, s, strings))
         .collect::<PyResult<Vec<_>>>()?;
     Ok(PyList::new(py, items)?.into_any())
 }
 
 /// A property's value as IfcOpenShell's `get_psets` gives it: a scalar, a list (enumerated
 /// and list values), a `(lower, upper)` tuple (bounded), a dict (complex), the `#id` (others).
-pub fn property_value<'py>(py: Python<'py>, v: &PropertyValue) -> PyResult<Bound<'py, PyAny>> {
+pub fn property_value<'a, 'py>(
+    py: Python<'py>,
+    v: &'a PropertyValue,
+    strings: &mut Strings<'a, 'py>,
+) -> PyResult<Bound<'py, PyAny>> {
     Ok(match v {
         PropertyValue::Single(None) => py.None().into_bound(py),
-        PropertyValue::Single(Some(s)) => scalar(py, s)?,
-        PropertyValue::Enumerated(l) | PropertyValue::List(l) => scalars(py, l)?,
+        PropertyValue::Single(Some(s)) => scalar(py, s, strings)?,
+        PropertyValue::Enumerated(l) | PropertyValue::List(l) => scalars(py, l, strings)?,
         PropertyValue::Bounded(lo, hi) => {
-            let f = |s: &Option<TypedScalar>| match s {
-                Some(s) => scalar(py, s),
+            let mut f = |s: &'a Option<TypedScalar>| match s {
+                Some(s) => scalar(py, s, strings),
                 None => Ok(py.None().into_bound(py)),
             };
-            PyTuple::new(py, [f(lo)?, f(hi)?])?.into_any()
+            let lo = f(lo)?;
+            let hi = f(hi)?;
+            PyTuple::new(py, [lo, hi])?.into_any()
         }
-        PropertyValue::Complex(props) => properties(py, props)?.into_any(),
+        PropertyValue::Complex(props) => properties(py, props, strings)?.into_any(),
         PropertyValue::Other(id) => id.0.into_pyobject(py)?.into_any(),
     })
 }
 
 /// Properties as a dict name -> value.
-pub fn properties<'py>(py: Python<'py>, props: &[Property]) -> PyResult<Bound<'py, PyDict>> {
+pub fn properties<'a, 'py>(
+    py: Python<'py>,
+    props: &'a [Property],
+    strings: &mut Strings<'a, 'py>,
+) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
     for p in props {
-        d.set_item(&p.name, property_value(py, &p.value)?)?;
+        let value = property_value(py, &p.value, strings)?;
+        d.set_item(strings.get(py, &p.name), value)?;
     }
     Ok(d)
 }

@@ -119,24 +119,26 @@ impl Model {
         convert::json(py, &v)
     }
 
-    /// Number of instances of `class`, subtypes included.
-    fn count(&self, class: &str) -> usize {
-        self.inner.count_of(class)
+    /// Number of instances of class `cls`, subtypes included.
+    fn count(&self, cls: &str) -> usize {
+        self.inner.count_of(cls)
     }
 
     /// Property sets (type sets merged under the occurrence's, as IfcOpenShell's
-    /// `get_psets`) of every instance of `class` with a GlobalId: GlobalId -> set name ->
+    /// `get_psets`) of every instance of class `cls` with a GlobalId: GlobalId -> set name ->
     /// property name -> value (each set also has `id`, the set's `#id`).
-    #[pyo3(signature = (class = "IfcProduct"))]
-    fn psets<'py>(&self, py: Python<'py>, class: &str) -> PyResult<Bound<'py, PyDict>> {
-        let all = py.detach(|| all_sets(&self.inner, class));
+    #[pyo3(signature = (cls = "IfcProduct"))]
+    fn psets<'py>(&self, py: Python<'py>, cls: &str) -> PyResult<Bound<'py, PyDict>> {
+        let all = py.detach(|| all_sets(&self.inner, cls));
         let out = PyDict::new(py);
-        for (gid, sets) in all {
+        let mut strings = convert::Strings::default();
+        let id = pyo3::intern!(py, "id");
+        for (gid, sets) in &all {
             let d = PyDict::new(py);
             for s in sets {
-                let props = convert::properties(py, &s.properties)?;
-                props.set_item("id", s.id.0)?;
-                d.set_item(s.name, props)?;
+                let props = convert::properties(py, &s.properties, &mut strings)?;
+                props.set_item(id, s.id.0)?;
+                d.set_item(strings.get(py, &s.name), props)?;
             }
             out.set_item(gid, d)?;
         }

@@ -80,7 +80,7 @@ def test_open_from_bytes_and_ifcopenshell_file(fzk):
     assert from_bytes.doors == fzk.doors
     f = ifcopenshell.open(str(path))
     from_ios = poinav.open(f)
-    assert len(from_ios.doors) == 5
+    assert len(from_ios.doors) == 5 == from_ios.count(cls="IfcDoor")
     assert from_ios.count("IfcWall") == len(f.by_type("IfcWall"))
     assert sorted(d["guid"] for d in from_ios.doors) == sorted(d.GlobalId for d in f.by_type("IfcDoor"))
 
