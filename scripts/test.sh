@@ -21,6 +21,8 @@ cargo fmt --all --check
 # tables for ours), which keeps the build and its ~45 linked test binaries small.
 cargo clippy --workspace --all-targets --locked -- -D warnings
 cargo test --workspace --locked
+# The Python package: the wheel (dev profile, reusing the tests' build), pytest in .venv-wheel.
+bash scripts/test-python.sh
 
 fuzz_seconds="${POINAV_FUZZ_SECONDS:-15}"
 if [[ $fuzz_seconds != 0 ]]; then

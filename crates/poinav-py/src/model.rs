@@ -1,0 +1,227 @@
+//! `Model`: an IFC file read once (`poinav_ifc::Model`), with its report, storeys, doors,
+//! property sets, element meshes as numpy arrays, enrichment and navigation building.
+
+use std::path::PathBuf;
+use std::sync::Arc;
+
+use poinav_ifc::property::{property_sets, PropertySet};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use rayon::prelude::*;
+
+use crate::building::Building;
+use crate::convert;
+use crate::enrichment::Enrichment;
+use crate::error::ifc_error;
+
+/// An IFC model read by poinav (IFC2X3, IFC4, IFC4X3_ADD2). Immutable; safe to share
+/// between threads.
+#[pyclass(frozen, module = "poinav._native")]
+#[derive(Debug)]
+pub struct Model {
+    pub(crate) inner: Arc<poinav_ifc::Model>,
+}
+
+/// Reads the IFC file at `path`.
+#[pyfunction]
+pub fn open_path(py: Python<'_>, path: PathBuf) -> PyResult<Model> {
+    py.detach(|| poinav_ifc::Model::open(&path))
+        .map(|m| Model { inner: Arc::new(m) })
+        .map_err(|e| ifc_error(py, &e))
+}
+
+/// Reads an IFC file from its bytes; `name` is what errors call it.
+#[pyfunction]
+#[pyo3(signature = (data, name = "<bytes>".to_string()))]
+pub fn open_bytes(py: Python<'_>, data: Vec<u8>, name: String) -> PyResult<Model> {
+    py.detach(|| poinav_ifc::Model::from_bytes(name, data))
+        .map(|m| Model { inner: Arc::new(m) })
+        .map_err(|e| ifc_error(py, &e))
+}
+
+/// The property sets of every instance of `class` (subtypes included) with a GlobalId.
+fn all_sets(model: &poinav_ifc::Model, class: &str) -> Vec<(String, Vec<PropertySet>)> {
+    let products = model.instances_of(class);
+    products
+        .par_iter()
+        .filter_map(|e| e.global_id().map(|g| (g, property_sets(*e))))
+        .collect()
+}
+
+/// Benchmark helper: reads `path` and every product's property sets in Rust only (no
+/// Python objects); returns the number of property sets. What the wheel adds is the
+/// difference to `open(path).psets()`.
+#[pyfunction]
+pub fn bench_psets(py: Python<'_>, path: PathBuf) -> PyResult<usize> {
+    let model = py
+        .detach(|| poinav_ifc::Model::open(&path))
+        .map_err(|e| ifc_error(py, &e))?;
+    Ok(py.detach(|| {
+        all_sets(&model, "IfcProduct")
+            .iter()
+            .map(|(_, s)| s.len())
+            .sum()
+    }))
+}
+
+/// Benchmark helper: meshes the model at `path` in Rust only; returns the triangle count.
+#[pyfunction]
+pub fn bench_meshes(py: Python<'_>, path: PathBuf) -> PyResult<usize> {
+    let model = py
+        .detach(|| poinav_ifc::Model::open(&path))
+        .map_err(|e| ifc_error(py, &e))?;
+    Ok(py.detach(|| {
+        poinav_geom::mesh_model(&model)
+            .elements
+            .iter()
+            .map(|e| e.mesh.triangles.len())
+            .sum()
+    }))
+}
+
+#[pymethods]
+impl Model {
+    /// The file name given when opening.
+    #[getter]
+    fn file(&self) -> String {
+        self.inner.file().display().to_string()
+    }
+
+    /// The schema: `IFC2X3`, `IFC4` or `IFC4X3_ADD2`.
+    #[getter]
+    fn schema(&self) -> &'static str {
+        self.inner.schema().name()
+    }
+
+    /// Number of instances.
+    fn __len__(&self) -> usize {
+        self.inner.len()
+    }
+
+    /// Storeys sorted by elevation: dicts with `id`, `guid`, `name`, `elevation_m`.
+    #[getter]
+    fn storeys<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let v = py.detach(|| crate::inspect::storeys(&self.inner));
+        convert::json(py, &serde_json::Value::Array(v))
+    }
+
+    /// Doors: dicts with `id`, `guid`, `name`, `storey`, `storey_id`, `overall_width_m`,
+    /// `overall_height_m` (metres).
+    #[getter]
+    fn doors<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let v = py.detach(|| crate::inspect::doors(&self.inner));
+        convert::json(py, &serde_json::Value::Array(v))
+    }
+
+    /// What `poinav inspect --json` prints, as a dict.
+    fn inspect<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let v = py.detach(|| crate::inspect::report(&self.inner));
+        convert::json(py, &v)
+    }
+
+    /// Number of instances of class `cls`, subtypes included.
+    fn count(&self, cls: &str) -> usize {
+        self.inner.count_of(cls)
+    }
+
+    /// Property sets (type sets merged under the occurrence's, as IfcOpenShell's
+    /// `get_psets`) of every instance of class `cls` with a GlobalId: GlobalId -> set name ->
+    /// property name -> value (each set also has `id`, the set's `#id`).
+    #[pyo3(signature = (cls = "IfcProduct"))]
+    fn psets<'py>(&self, py: Python<'py>, cls: &str) -> PyResult<Bound<'py, PyDict>> {
+        let all = py.detach(|| all_sets(&self.inner, cls));
+        let out = PyDict::new(py);
+        let mut strings = convert::Strings::default();
+        let id = pyo3::intern!(py, "id");
+        for (gid, sets) in &all {
+            let d = PyDict::new(py);
+            for s in sets {
+                let props = convert::properties(py, &s.properties, &mut strings)?;
+                props.set_item(id, s.id.0)?;
+                d.set_item(strings.get(py, &s.name), props)?;
+            }
+            out.set_item(gid, d)?;
+        }
+        Ok(out)
+    }
+
+    /// Element meshes in world metres (openings cut), in file order: dicts with `id`,
+    /// `global_id`, `class`, `name`, `storey` (name), `storey_id`, `vertices` (n, 3)
+    /// float64, `triangles` (m, 3) uint32, `color` (RGBA or None). `spaces=True` adds the
+    /// spaces. Elements whose geometry failed are left out (see `mesh_failures`).
+    #[pyo3(signature = (spaces = false))]
+    fn meshes<'py>(&self, py: Python<'py>, spaces: bool) -> PyResult<Vec<Bound<'py, PyDict>>> {
+        let meshes = py.detach(|| poinav_geom::mesh_model(&self.inner));
+        let mut out = Vec::with_capacity(meshes.elements.len());
+        let list = meshes
+            .elements
+            .into_iter()
+            .chain(spaces.then_some(meshes.spaces).into_iter().flatten());
+        for e in list {
+            let d = PyDict::new(py);
+            d.set_item("id", e.product.0)?;
+            d.set_item("global_id", e.global_id)?;
+            d.set_item("class", e.class)?;
+            d.set_item("name", e.name)?;
+            let storey = e.storey.and_then(|s| self.inner.entity(s));
+            d.set_item("storey", storey.and_then(|s| s.name()))?;
+            d.set_item("storey_id", e.storey.map(|s| s.0))?;
+            let verts: Vec<f64> = e
+                .mesh
+                .positions
+                .iter()
+                .flat_map(|p| [p.x, p.y, p.z])
+                .collect();
+            let tris: Vec<u32> = e.mesh.triangles.into_iter().flatten().collect();
+            d.set_item("vertices", convert::array2(py, verts, 3)?)?;
+            d.set_item("triangles", convert::array2(py, tris, 3)?)?;
+            d.set_item("color", e.color)?;
+            out.push(d);
+        }
+        Ok(out)
+    }
+
+    /// Products whose geometry could not be made: dicts with `id` and `reason`.
+    fn mesh_failures<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let meshes = py.detach(|| poinav_geom::mesh_model(&self.inner));
+        let v: Vec<serde_json::Value> = meshes
+            .failures
+            .iter()
+            .map(|(id, e)| serde_json::json!({"id": id.0, "reason": e.to_string()}))
+            .collect();
+        convert::json(py, &serde_json::Value::Array(v))
+    }
+
+    /// Classifies every element with the POI rules for each profile (`poinav enrich`).
+    #[pyo3(signature = (profiles = Vec::new(), rules = None, pset_prefix = "Pset_".to_string()))]
+    fn enrich(
+        &self,
+        py: Python<'_>,
+        profiles: Vec<PathBuf>,
+        rules: Option<PathBuf>,
+        pset_prefix: String,
+    ) -> PyResult<Enrichment> {
+        Enrichment::new(
+            py,
+            self.inner.clone(),
+            &profiles,
+            rules.as_ref(),
+            pset_prefix,
+        )
+    }
+
+    /// The building's storeys as navigation floors for `profile` (`poinav route`, `audit`).
+    #[pyo3(signature = (profile = None))]
+    fn building(&self, py: Python<'_>, profile: Option<PathBuf>) -> PyResult<Building> {
+        Building::new(py, &self.inner, profile.as_ref())
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "<poinav.Model {} ({}, {} instances)>",
+            self.inner.file().display(),
+            self.inner.schema().name(),
+            self.inner.len()
+        )
+    }
+}

@@ -1,0 +1,153 @@
+//! `simulate`: one run of a scenario (`poinav simulate`), its summary as a dict, the final POI
+//! records the robots read and updated, and the trace as numpy columns.
+
+use std::path::{Path, PathBuf};
+
+use poinav_sim::Scenario;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use serde_json::Value;
+
+use crate::convert;
+use crate::error::{to_py, PoinavError};
+
+/// The trace's columns: one row per robot per recorded step.
+#[derive(Debug, Default)]
+struct Columns {
+    robots: Vec<String>,
+    step: Vec<u64>,
+    t: Vec<f64>,
+    robot: Vec<u32>,
+    xy: Vec<f64>,
+    heading_deg: Vec<f64>,
+    speed: Vec<f64>,
+    omega_deg_s: Vec<f64>,
+    rays: Vec<f64>,
+}
+
+fn columns(trace: &[u8]) -> Result<Columns, String> {
+    let mut c = Columns::default();
+    for (n, line) in trace.split(|b| *b == b'\n').enumerate() {
+        if line.is_empty() {
+            continue;
+        }
+        let v: Value =
+            serde_json::from_slice(line).map_err(|e| format!("trace line {}: {e}", n + 1))?;
+        let f = |k: &str| v[k].as_f64().unwrap_or(f64::NAN);
+        let name = v["robot"].as_str().unwrap_or_default();
+        let r = match c.robots.iter().position(|x| x == name) {
+            Some(r) => r,
+            None => {
+                c.robots.push(name.to_string());
+                c.robots.len() - 1
+            }
+        };
+        c.step.push(v["step"].as_u64().unwrap_or_default());
+        c.t.push(f("t"));
+        c.robot.push(r as u32);
+        c.xy.extend([f("x"), f("y")]);
+        c.heading_deg.push(f("heading_deg"));
+        c.speed.push(f("speed"));
+        c.omega_deg_s.push(f("omega_deg_s"));
+        let rays = v["rays"].as_array().cloned().unwrap_or_default();
+        for k in 0..5 {
+            c.rays.push(
+                rays.get(k)
+                    .and_then(|r| r["d"].as_f64())
+                    .unwrap_or(f64::NAN),
+            );
+        }
+    }
+    Ok(c)
+}
+
+/// Runs `variant` of the scenario (a file, or TOML text with `text=True`; relative paths are
+/// resolved from `base`, default the current folder). Returns a dict: `summary` (as
+/// summary.json), `pass`, `poi` (the POI records at the end), `trace` (numpy columns, when
+/// `trace`), and `outputs` (files written into `output`, when given).
+#[pyfunction]
+#[pyo3(signature = (scenario, variant = None, text = false, base = None, output = None, trace = true))]
+pub fn simulate<'py>(
+    py: Python<'py>,
+    scenario: String,
+    variant: Option<String>,
+    text: bool,
+    base: Option<PathBuf>,
+    output: Option<PathBuf>,
+    trace: bool,
+) -> PyResult<Bound<'py, PyDict>> {
+    let scenario = if text {
+        let dir = base.unwrap_or_else(|| PathBuf::from("."));
+        Scenario::from_toml(&scenario, "<scenario>", &dir)
+    } else {
+        Scenario::load(Path::new(&scenario))
+    }
+    .map_err(to_py)?;
+    let names = scenario.variant_names();
+    if variant.is_none() && !names.is_empty() {
+        return Err(PoinavError::new_err(format!(
+            "scenario `{}` has variants {}: pass variant=",
+            scenario.name,
+            names.join(", ")
+        )));
+    }
+    let (outcome, cols, written) = py.detach(|| -> PyResult<_> {
+        let converter = poinav_sim::ifc_floor::converter();
+        let building =
+            poinav_sim::prepare(&scenario, variant.as_deref(), Some(&converter)).map_err(to_py)?;
+        let outcome = if trace {
+            poinav_sim::run(&scenario, variant.as_deref(), &building.floor)
+        } else {
+            poinav_sim::run_with(&scenario, variant.as_deref(), &building.floor, None)
+        }
+        .map_err(to_py)?;
+        let written = match &output {
+            Some(dir) => {
+                poinav_sim::write_outputs(dir, &outcome, &building.floor).map_err(to_py)?
+            }
+            None => Vec::new(),
+        };
+        let cols = match &outcome.trace {
+            Some(t) => Some(columns(t).map_err(PoinavError::new_err)?),
+            None => None,
+        };
+        Ok((outcome, cols, written))
+    })?;
+    let d = PyDict::new(py);
+    d.set_item("summary", convert::json(py, &outcome.summary())?)?;
+    d.set_item("pass", outcome.passed())?;
+    let poi: Vec<Value> = outcome
+        .data
+        .db
+        .records()
+        .iter()
+        .map(|e| {
+            serde_json::json!({
+                "global_id": e.global_id,
+                "class": e.class,
+                "name": e.name,
+                "primary_roles": e.primary.iter().map(|r| r.label()).collect::<Vec<_>>(),
+                "conditional_roles": e.conditional.iter().map(|r| r.label()).collect::<Vec<_>>(),
+                "status": e.accessibility.as_ref().map(|a| a.status.label()),
+                "method": e.accessibility.as_ref().map(|a| a.method.label()),
+            })
+        })
+        .collect();
+    d.set_item("poi", convert::json(py, &Value::Array(poi))?)?;
+    if let Some(c) = cols {
+        let t = PyDict::new(py);
+        t.set_item("robots", c.robots)?;
+        t.set_item("step", numpy::PyArray1::from_vec(py, c.step))?;
+        t.set_item("t", numpy::PyArray1::from_vec(py, c.t))?;
+        t.set_item("robot", numpy::PyArray1::from_vec(py, c.robot))?;
+        t.set_item("xy", convert::array2(py, c.xy, 2)?)?;
+        t.set_item("heading_deg", numpy::PyArray1::from_vec(py, c.heading_deg))?;
+        t.set_item("speed", numpy::PyArray1::from_vec(py, c.speed))?;
+        t.set_item("omega_deg_s", numpy::PyArray1::from_vec(py, c.omega_deg_s))?;
+        t.set_item("ray_m", convert::array2(py, c.rays, 5)?)?;
+        d.set_item("trace", t)?;
+    }
+    let outputs: Vec<String> = written.iter().map(|p| p.display().to_string()).collect();
+    d.set_item("outputs", outputs)?;
+    Ok(d)
+}

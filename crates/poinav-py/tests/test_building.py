@@ -1,0 +1,68 @@
+"""Model.building: storeys, occupancy grids as numpy, routes and the audit against
+`poinav route --json` and `poinav audit --json`."""
+
+import numpy as np
+import poinav
+import pytest
+from conftest import CORPUS, PROFILES, cli_json
+
+
+@pytest.fixture(scope="module")
+def fzk_building(fzk):
+    return fzk.building()
+
+
+def test_storeys_and_grid(fzk_building):
+    b = fzk_building
+    assert b.profile == "paper-robot"
+    assert [s["name"] for s in b.storeys] == ["Erdgeschoss", "Dachgeschoss"]
+    assert b.storeys[0]["zones"] == 6 and b.storeys[0]["doors"] == 5
+    g = b.grid("Erdgeschoss")
+    cells = np.asarray(g)
+    assert cells.dtype == np.uint8 and cells.ndim == 2
+    assert g.shape == cells.shape
+    assert set(np.unique(cells)) == {g.FREE, g.OCCUPIED, g.UNKNOWN}
+    assert g.resolution == 0.05
+    assert g.clearance_m.shape == cells.shape and g.clearance_m.dtype == np.float32
+    # The grid covers the house (about 12 x 10 m) with an unknown border.
+    h, w = cells.shape
+    assert 10.0 < w * g.resolution < 20.0 and 8.0 < h * g.resolution < 20.0
+    free_m2 = (cells == 0).sum() * g.resolution**2
+    assert 40.0 < free_m2 < 160.0
+    assert (np.asarray(b.grid(0)) == cells).all()
+    coarse = b.grid(0, resolution=0.1)
+    assert abs(coarse.shape[1] * 0.1 - w * 0.05) < 0.2
+    with pytest.raises(poinav.PoinavError, match="Erdgeschoss"):
+        b.grid("Keller")
+    with pytest.raises(poinav.PoinavError, match="resolution"):
+        b.grid(0, resolution=5.0)
+
+
+def test_route_equals_cli(fzk_building):
+    mine = fzk_building.route("outside", "Wohnen")
+    cli = cli_json("route", CORPUS / "fzk-haus-ifc4.ifc", "--from", "outside", "--to", "Wohnen", "--json")
+    assert mine["length_m"] == pytest.approx(cli["length_m"], abs=1e-9)
+    assert mine["time_s"] == pytest.approx(cli["time_s"], abs=1e-9)
+    assert [l["floor_name"] for l in mine["legs"]] == [l["floor_name"] for l in cli["legs"]]
+    assert 2.0 < mine["length_m"] < 30.0
+
+
+def test_no_route_and_unknown_place(fzk_building):
+    with pytest.raises(poinav.NoRouteError):
+        fzk_building.route("outside", "Galerie")  # upstairs, by a spiral stair only
+    with pytest.raises(poinav.PoinavError, match="Nowhere"):
+        fzk_building.route("outside", "Nowhere")
+
+
+@pytest.mark.parametrize("name", ["fzk-haus-ifc4.ifc", "duplex-apartment.ifc"])
+def test_audit_equals_cli(name, tmp_path):
+    profiles = [PROFILES / "paper-robot.toml", PROFILES / "wide-cart.toml"]
+    b = poinav.open(CORPUS / name).building(profiles[0])
+    mine = b.audit(profiles=profiles)
+    args = []
+    for p in profiles:
+        args += ["--profile", p]
+    cli = cli_json("audit", CORPUS / name, "-o", tmp_path / "report.html", "--json", *args)
+    assert mine["profiles"] == cli["profiles"]
+    assert mine["floors"] == cli["floors"]
+    assert [p["profile"] for p in mine["profiles"]] == ["paper-robot", "wide-cart"]

@@ -1,0 +1,63 @@
+"""poinav.dask on a 2-worker LocalCluster: the corpus audited for two profiles, and the
+door-width sweep of the doorway scenario with its flip widths."""
+
+import pytest
+from conftest import PROFILES, corpus_files
+
+distributed = pytest.importorskip("distributed")
+import poinav.dask  # noqa: E402
+
+
+@pytest.fixture(scope="module")
+def client():
+    cluster = distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=False,
+                                       dashboard_address=None)
+    with distributed.Client(cluster) as c:
+        yield c
+    cluster.close()
+
+
+def test_audit_corpus(client):
+    # The synthetic 18 MB merge (a throughput file of overlapping buildings) alone takes over a
+    # minute in the debug wheel; the other 14 models are audited.
+    files = [f for f in corpus_files() if not f.name.startswith("synthetic-")]
+    # One profile keeps the test short (several profiles per file: test_building's audit).
+    table = poinav.dask.audit_files(client, files, profiles=["paper"])
+    assert len(table) == len(files)
+    assert table["error"].isna().all(), table[table["error"].notna()]
+    assert set(table["profile"]) == {"paper-robot"}
+    by = table.set_index("file")
+    fzk = by.loc[str(next(f for f in files if f.name == "fzk-haus-ifc4.ifc"))]
+    assert fzk[["door_passages", "full", "restricted", "blocked", "spaces_reachable"]].tolist() == [5, 2, 3, 0, 6]
+    office = by.loc[str(next(f for f in files if f.name == "office-a.ifc"))]
+    assert office["door_passages"] == 104 and office["full"] == 99 and office["restricted"] == 5
+    assert office["spaces_reachable"] == 99
+    railway = by.loc[str(next(f for f in files if f.name == "railway-track-ifc4x3.ifc"))]
+    assert railway["door_passages"] == 0
+    # The same rows without a cluster, the file sent as bytes.
+    profiles = ["paper", PROFILES / "wide-cart.toml"]
+    here = poinav.dask.audit_files(None, [files[0]], profiles=profiles, ship_bytes=True)
+    assert len(here) == 2
+    assert here["full"].iloc[1] <= here["full"].iloc[0]
+    assert here.iloc[:1].drop(columns="file").equals(
+        table[table["file"] == str(files[0])].drop(columns="file").reset_index(drop=True))
+
+
+def test_door_width_sweep(client):
+    widths = [0.70, 0.80, 0.90, 1.00, 1.10, 1.20, 1.30]
+    profiles = ["paper", PROFILES / "compact-robot.toml", PROFILES / "wide-cart.toml"]
+    sweep = poinav.dask.door_width_sweep(client, widths, profiles=profiles)
+    assert len(sweep) == len(widths) * 3
+    status = sweep.set_index(["profile", "width_m"])["status"]
+    assert status[("paper-robot", 0.80)] == "RESTRICTED"
+    assert status[("paper-robot", 1.20)] == "FULL_ACCESS"
+    assert status[("wide-cart", 0.70)] == "NO_ROUTE"
+    assert poinav.dask.flip_widths(sweep) == {"compact-robot": 0.8, "paper-robot": 0.9, "wide-cart": 1.1}
+
+
+def test_enrich_files(client):
+    files = [f for f in corpus_files() if f.name in ("fzk-haus-ifc4.ifc", "office-a.ifc")]
+    table = poinav.dask.enrich_files(client, files, profiles=["paper"])
+    fzk = table[table["file"].str.endswith("fzk-haus-ifc4.ifc")].iloc[0]
+    assert fzk["doors_full_access"] == 2 and fzk["doors_restricted"] == 3
+    assert fzk["elements"] == 87
