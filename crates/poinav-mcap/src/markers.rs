@@ -43,26 +43,6 @@ fn closed(ring: &[DVec2], z: f64) -> Vec<[f64; 3]> {
     pts
 }
 
-/// The area centroid of a ring (its vertices' mean when it has no area).
-fn centroid(ring: &[DVec2]) -> DVec2 {
-    let n = ring.len();
-    if n == 0 {
-        return DVec2::ZERO;
-    }
-    let (mut a, mut c) = (0.0, DVec2::ZERO);
-    for i in 0..n {
-        let (p, q) = (ring[i], ring[(i + 1) % n]);
-        let cross = p.perp_dot(q);
-        a += cross;
-        c += (p + q) * cross;
-    }
-    if a.abs() < 1e-12 {
-        ring.iter().copied().sum::<DVec2>() / n as f64
-    } else {
-        c / (3.0 * a)
-    }
-}
-
 fn labels(roles: &[Role]) -> String {
     roles
         .iter()
@@ -135,7 +115,7 @@ pub fn floor_markers(floor: &Floor, status: &BTreeMap<String, String>) -> Vec<Ma
             points: closed(&z.ring, 0.01),
             text: String::new(),
         });
-        let c = centroid(&z.ring);
+        let c = poinav_nav::polygon::centroid(&z.ring).unwrap_or(DVec2::ZERO);
         out.push(Marker {
             ns: "zone_labels".into(),
             id: i as i32,
@@ -188,7 +168,10 @@ mod tests {
             DVec2::new(2.0, 2.0),
             DVec2::new(0.0, 2.0),
         ];
-        assert_eq!(centroid(&sq), DVec2::new(1.0, 1.0));
+        assert_eq!(
+            poinav_nav::polygon::centroid(&sq),
+            Some(DVec2::new(1.0, 1.0))
+        );
         assert_eq!(closed(&sq, 0.0).len(), 5);
         assert_eq!(status_color("BLOCKED"), [0.86, 0.15, 0.15, 1.0]);
     }

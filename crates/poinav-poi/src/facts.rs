@@ -337,12 +337,10 @@ impl<'m> FactContext<'m> {
             .flat_map(|r| r.get_refs("RelatedObjects"))
             .filter(|p| p.is_a("IfcRampFlight"))
             .collect();
-        let steepest = |it: &mut dyn Iterator<Item = f64>| it.reduce(f64::max);
-        let by_flights = steepest(
-            &mut flights
-                .iter()
-                .filter_map(|fl| from_props(&properties_of(*fl))),
-        );
+        let by_flights = flights
+            .iter()
+            .filter_map(|fl| from_props(&properties_of(*fl)))
+            .reduce(f64::max);
         if by_flights.is_some() {
             return (by_flights, Some("flights' properties"));
         }
@@ -353,8 +351,10 @@ impl<'m> FactContext<'m> {
                 .and_then(|m| poinav_geom::walking_slope_deg(&m.mesh))
         };
         let by_geometry = slope_of(e).or_else(|| {
-            let parts: Vec<f64> = flights.iter().filter_map(|fl| slope_of(*fl)).collect();
-            parts.into_iter().reduce(f64::max)
+            flights
+                .iter()
+                .filter_map(|fl| slope_of(*fl))
+                .reduce(f64::max)
         });
         (by_geometry, by_geometry.map(|_| "geometry"))
     }

@@ -95,13 +95,9 @@ pub struct Estimator {
     far: f64,
     /// Depth of the opening's near side (its ring's nearest point).
     near: f64,
-    /// Depth of the wall face: the nearest in-band hit of the front and +-30 degree rays, but
-    /// never before the opening's near side (which it is until such a hit). The +-90 degree rays are left out, and the near
-    /// side bounds it: a perpendicular wall far to the side, hit a few centimetres before the
-    /// face, would otherwise make every face point look like the reveal.
-    face: f64,
-    /// True once a hit has set `face`.
-    face_seen: bool,
+    /// The nearest in-band hit of the front and +-30 degree rays (infinite before the first);
+    /// see [`Estimator::face`].
+    face_hit: f64,
     /// Per side (0 left, 1 right): the innermost wall point, |u|.
     inner: [f64; 2],
     /// Per side: the innermost hit on the jamb's reveal (deeper than the face, short of the far
@@ -127,8 +123,7 @@ impl Estimator {
             band: (lo - 0.05, hi + 0.05),
             far: hi,
             near: lo,
-            face: lo,
-            face_seen: false,
+            face_hit: f64::INFINITY,
             reveal: [f64::INFINITY; 2],
             inner: [f64::INFINITY; 2],
             lower: [f64::NEG_INFINITY; 2],
@@ -148,18 +143,10 @@ impl Estimator {
                     let u = rel.dot(lat);
                     let side = usize::from(u < 0.0);
                     if k != LEFT && k != RIGHT {
-                        // The first hit sets the face (never before the near side); later hits
-                        // only move it nearer.
-                        self.face = if self.face_seen {
-                            self.face.min(depth)
-                        } else {
-                            depth
-                        }
-                        .max(self.near);
-                        self.face_seen = true;
+                        self.face_hit = self.face_hit.min(depth);
                     }
                     self.inner[side] = self.inner[side].min(u.abs());
-                    if depth > self.face + 0.01 && depth < self.far - 0.01 {
+                    if depth > self.face() + 0.01 && depth < self.far - 0.01 {
                         self.reveal[side] = self.reveal[side].min(u.abs());
                     }
                 }
@@ -167,10 +154,10 @@ impl Estimator {
             let along = dir.dot(self.axis);
             if dir.dot(lat).abs() > 0.2 && along > 1e-9 && ray.passages.contains(self.door) {
                 // Where the ray crossed the face line, on a side that has a wall point.
-                let t = (self.face - (pos - self.origin).dot(self.axis)) / along;
+                let t = (self.face() - (pos - self.origin).dot(self.axis)) / along;
                 let u = (pos + dir * t - self.origin).dot(lat);
                 let side = usize::from(u < 0.0);
-                if t >= 0.0 && self.face.is_finite() && u.abs() < self.inner[side] {
+                if t >= 0.0 && u.abs() < self.inner[side] {
                     self.lower[side] = self.lower[side].max(u.abs());
                 }
             }
@@ -183,6 +170,19 @@ impl Estimator {
             return Some(est);
         }
         None
+    }
+
+    /// Depth of the wall face: the nearest in-band hit of the front and +-30 degree rays, but
+    /// never before the opening's near side (which it is until such a hit). The +-90 degree
+    /// rays are left out, and the near side bounds it: a perpendicular wall far to the side,
+    /// hit a few centimetres before the face, would otherwise make every face point look like
+    /// the reveal.
+    pub fn face(&self) -> f64 {
+        if self.face_hit.is_finite() {
+            self.face_hit.max(self.near)
+        } else {
+            self.near
+        }
     }
 
     /// The current estimate, once both jambs are measured: each side's innermost wall point is

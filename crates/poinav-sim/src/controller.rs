@@ -280,8 +280,8 @@ impl Follower {
     }
 
     /// The same, knowing the clear width of the door each waypoint passes through
-    /// ([`NavGraph::waypoint_widths`]): through a door with little room to spare the robot
-    /// keeps to the door's axis and drives only once aligned.
+    /// ([`NavGraph::waypoints`]): through a door with little room to spare the robot keeps to
+    /// the door's axis and drives only once aligned.
     pub fn with_widths(mut self, widths: Vec<Option<f64>>) -> Follower {
         self.widths = widths;
         self
@@ -439,11 +439,9 @@ impl Controller {
         cruise: f64,
         lead: f64,
     ) -> Controller {
+        let (wps, widths) = nav.waypoints(start, doors, to, lead);
         Controller {
-            kind: Kind::Route(
-                Follower::new(start, nav.waypoints(start, doors, to, lead), cruise)
-                    .with_widths(nav.waypoint_widths(doors)),
-            ),
+            kind: Kind::Route(Follower::new(start, wps, cruise).with_widths(widths)),
             target: Some(to),
         }
     }
@@ -566,8 +564,8 @@ impl Controller {
                     let centre = c.nav.doors[*door as usize].center;
                     let s = (centre - c.pos).dot(dir);
                     if s <= 0.02 {
-                        let mut wps = c.nav.waypoints(c.pos, doors, *to, lim.half_length + 0.5);
-                        let mut widths = c.nav.waypoint_widths(doors);
+                        let (mut wps, mut widths) =
+                            c.nav.waypoints(c.pos, doors, *to, lim.half_length + 0.5);
                         if c.nav.doors[*door as usize].axis.is_some() {
                             wps.remove(0);
                             widths.remove(0);

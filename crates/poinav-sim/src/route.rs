@@ -177,25 +177,18 @@ impl NavGraph {
         Some(path)
     }
 
-    /// The clear width of the door each of [`NavGraph::waypoints`]' points passes through (its
-    /// centre and exit), `None` elsewhere.
-    pub fn waypoint_widths(&self, doors: &[u32]) -> Vec<Option<f64>> {
-        let mut out = Vec::new();
-        for &d in doors {
-            let door = &self.doors[d as usize];
-            match door.axis {
-                Some(_) => out.extend([None, Some(door.width), Some(door.width)]),
-                None => out.push(Some(door.width)),
-            }
-        }
-        out.push(None);
-        out
-    }
-
     /// Waypoints from `from` through `doors` to zone `to`'s goal: before and after every door
-    /// a point `lead` metres out on its axis, so the robot crosses it straight.
-    pub fn waypoints(&self, from: DVec2, doors: &[u32], to: u32, lead: f64) -> Vec<DVec2> {
+    /// a point `lead` metres out on its axis, so the robot crosses it straight; with each, the
+    /// clear width of the door it passes through (its centre and exit), `None` elsewhere.
+    pub fn waypoints(
+        &self,
+        from: DVec2,
+        doors: &[u32],
+        to: u32,
+        lead: f64,
+    ) -> (Vec<DVec2>, Vec<Option<f64>>) {
         let mut out = Vec::new();
+        let mut widths = Vec::new();
         let mut prev = from;
         for &d in doors {
             let door = &self.doors[d as usize];
@@ -206,15 +199,18 @@ impl NavGraph {
                     } else {
                         -axis
                     };
-                    out.push(door.center - n * lead);
-                    out.push(door.center);
-                    out.push(door.center + n * lead);
+                    out.extend([door.center - n * lead, door.center, door.center + n * lead]);
+                    widths.extend([None, Some(door.width), Some(door.width)]);
                 }
-                None => out.push(door.center),
+                None => {
+                    out.push(door.center);
+                    widths.push(Some(door.width));
+                }
             }
             prev = door.center;
         }
         out.push(self.goals[to as usize]);
-        out
+        widths.push(None);
+        (out, widths)
     }
 }
