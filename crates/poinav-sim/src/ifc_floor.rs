@@ -154,6 +154,7 @@ pub fn floor_from_plan(plan: &FloorPlan, classification: &Classification) -> Flo
             roles: roles(c),
             spaces: None,
             doorless: false,
+            terrain: false,
         });
     }
     // Doorways (openings no door fills): open whatever the model says, as wide as they are.
@@ -180,6 +181,7 @@ pub fn floor_from_plan(plan: &FloorPlan, classification: &Classification) -> Flo
             roles: roles(c),
             spaces: None,
             doorless: true,
+            terrain: false,
         });
     }
     floor
@@ -265,6 +267,9 @@ pub fn building_from_plans(
     for (floor, obstacle) in vertical.shadows {
         floors[floor].obstacles.push(obstacle);
     }
+    // Doors above ground level that open onto the terrain are entrances too.
+    let terrain = crate::terrain::terrain_of(model, meshes);
+    crate::terrain::mark_terrain_doors(model, meshes, plans, &mut floors, &levels, &terrain);
     (
         poinav_nav::Building {
             floors,
