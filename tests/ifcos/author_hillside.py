@@ -2,15 +2,18 @@
 
 Usage: .venv/bin/python tests/ifcos/author_hillside.py OUT_DIR
 
-Writes three IFC4 files (metres) into OUT_DIR that differ only in how the terrain is modelled,
-and prints JSON with their names, IfcOpenShell's mesh of each one's terrain (class, triangles,
+Writes four IFC4 files (metres) into OUT_DIR that differ in how the terrain is modelled (and
+one in a roof behind the house), and prints JSON with their names, IfcOpenShell's mesh of each one's terrain (class, triangles,
 z range, area), the doors' and spaces' GlobalIds and the terrain's heights:
 
 - hillside-geographic.ifc: an IfcGeographicElement of PredefinedType TERRAIN contained in the
   site;
 - hillside-site.ifc: the IfcSite's own body;
 - hillside-proxy.ifc: an IfcBuildingElementProxy named "Gelände" (as IFC2X3 exporters write
-  terrain) contained in the site.
+  terrain) contained in the site;
+- hillside-covered.ifc: as hillside-geographic.ifc, plus the ground floor's roof slab (ROOF,
+  top at 3.00) over a strip behind the house (x 0-10, y 8-10): the hillside door opens onto
+  a roof of the building, not onto the terrain.
 
 The house is 10 x 8 m (x 0-10, y 0-8) with 0.2 m walls and no stair:
 
@@ -110,7 +113,7 @@ def build(variant):
     rel_aggregates(project, [site])
     rel_aggregates(site, [building])
 
-    if variant == "geographic":
+    if variant in ("geographic", "covered"):
         terrain = f.createIfcGeographicElement(
             gid("terrain"), None, "Hill", None, None, place(site_pl),
             shape([terrain_surface()], "Tessellation"), None, "TERRAIN",
@@ -200,6 +203,8 @@ def build(variant):
             hall = add_space("Hall", st, 0.2, 0.2, 9.8, 7.8, z0, z1)
             door("Front door", st, walls["south"], 2.0, 0.0, 3.0, 0.2, z0, [hall])
             slab("Ground slab", st, 0.0)
+            if variant == "covered":
+                product("IfcSlab", "Rear roof", st, (0.0, 8.0, 2.8, 10.0, 10.0, 3.0), "slab rear roof", PredefinedType="ROOF")
         else:
             walls["middle"] = wall("Middle", st, 6.0, 0.2, 6.2, 7.8, z0, z1)
             upper_hall = add_space("Upper hall", st, 0.2, 0.2, 6.0, 7.8, z0, z1)
@@ -235,7 +240,7 @@ def terrain_mesh(model):
 
 out_dir = sys.argv[1]
 files, meshes = {}, {}
-for variant in ("geographic", "site", "proxy"):
+for variant in ("geographic", "site", "proxy", "covered"):
     model = build(variant)
     name = "hillside-%s.ifc" % variant
     model.write(os.path.join(out_dir, name))

@@ -267,9 +267,11 @@ pub fn building_from_plans(
     for (floor, obstacle) in vertical.shadows {
         floors[floor].obstacles.push(obstacle);
     }
-    // Doors above ground level that open onto the terrain are entrances too.
-    let terrain = crate::terrain::terrain_of(model, meshes);
-    crate::terrain::mark_terrain_doors(model, meshes, plans, &mut floors, &levels, &terrain);
+    // Doors above (or below) ground level that open onto the terrain are entrances too.
+    if levels.iter().any(|l| !l.at_ground) {
+        let terrain = crate::terrain::terrain_of(model, meshes);
+        crate::terrain::mark_terrain_doors(model, meshes, plans, &mut floors, &levels, &terrain);
+    }
     (
         poinav_nav::Building {
             floors,

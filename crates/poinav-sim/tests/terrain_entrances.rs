@@ -3,7 +3,8 @@
 //! (`tests/ifcos/author_hillside.py`) with its terrain modelled three ways: an
 //! IfcGeographicElement TERRAIN, the IfcSite's body, an IfcBuildingElementProxy named
 //! "Gelände". Its upper floor is reached only through the hillside door (no stair); the
-//! balcony door above low terrain stays no entrance.
+//! balcony door above low terrain stays no entrance, and so does the hillside door where a
+//! roof of the ground floor lies under the terrain behind it.
 
 use std::path::Path;
 
@@ -211,4 +212,24 @@ fn a_hillside_door_is_an_entrance_from_the_terrain() {
             label("before")
         );
     }
+
+    // Terrain at the upper storey's level beyond the hillside door, but over the ground
+    // floor's roof slab there (a roof terrace, inside the building's footprint): no entrance.
+    let file = dir.path().join(info["files"]["covered"].as_str().unwrap());
+    let b = building(&file, &paper);
+    assert!(b.floors.iter().flat_map(|f| &f.doors).all(|d| !d.terrain));
+    let nav = Navigator::new(&b, &paper, &NavOptions::default()).unwrap();
+    let hillside = entrances(&nav)
+        .into_iter()
+        .find(|(n, _)| n == "Hillside door")
+        .unwrap();
+    assert_eq!(hillside.1, None);
+    assert_eq!(
+        reachable(&nav),
+        [
+            ("Hall".to_string(), true),
+            ("Upper hall".to_string(), false),
+            ("Upper room".to_string(), false),
+        ]
+    );
 }
