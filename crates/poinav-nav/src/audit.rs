@@ -50,7 +50,7 @@ pub struct DoorAudit {
     /// An entrance (a zone on one side only).
     pub exterior: bool,
     /// How an entrance is reached from outside: `ground` (its storey is at ground level) or
-    /// `terrain` (a door above ground level that opens onto the terrain); `null` for other
+    /// `terrain` (a door on a storey not at ground level that opens onto the terrain); `null` for other
     /// doors.
     pub entrance: Option<crate::level::Entrance>,
     /// Names of the zones on its two sides (`outside` for none).
@@ -406,8 +406,8 @@ pub fn audit_profile(nav: &Navigator<'_>, start: Option<&str>) -> Result<Profile
 /// How the report names an entrance (door node `node`) among the starts: `Level 1 door 184606
 /// into 101 ENTRY`: the storey, the door's name (for a Revit-style `Family:Type:Id` name its
 /// last part, else the GlobalId's first 8 characters when it has none) and the space it leads
-/// into (Name and LongName); `, from the terrain` ends the label of a door above ground level
-/// that opens onto the terrain ([`crate::level::Entrance::Terrain`]).
+/// into (Name and LongName); `, from the terrain` ends the label of a door on a storey not at
+/// ground level that opens onto the terrain ([`crate::level::Entrance::Terrain`]).
 pub fn entrance_label(nav: &Navigator<'_>, node: usize) -> String {
     let t = &nav.topology;
     let n = &t.nodes[node];

@@ -124,7 +124,7 @@ pub struct DoorSides {
     /// not the way in from outside: no entrance.
     pub off_ground: bool,
     /// Its side outside every space opens onto the terrain at its storey's walking level
-    /// ([`crate::FloorDoor::terrain`]): on a storey above ground level it is an entrance all
+    /// ([`crate::FloorDoor::terrain`]): on a storey not at ground level it is an entrance all
     /// the same ([`Entrance::Terrain`]).
     pub terrain: bool,
 }

@@ -40,8 +40,8 @@ impl LevelSource {
 pub enum Entrance {
     /// On a storey at ground level ([`FloorLevel::at_ground`]).
     Ground,
-    /// On a storey above ground level, but its outside opens onto the terrain at that
-    /// storey's walking level (a hillside door, [`crate::FloorDoor::terrain`]).
+    /// On a storey not at ground level (above or below), but its outside opens onto the
+    /// terrain at that storey's walking level (a hillside door, [`crate::FloorDoor::terrain`]).
     Terrain,
 }
 

@@ -393,7 +393,7 @@ pub fn audit(args: &AuditArgs) -> anyhow::Result<ExitCode> {
             for d in &p.doors {
                 if d.entrance == Some(poinav_nav::Entrance::Terrain) {
                     outln!(
-                        "  entrance from the terrain: {} door {} (storey above ground level)",
+                        "  entrance from the terrain: {} door {} (storey not at ground level)",
                         d.floor_name,
                         d.name.as_deref().unwrap_or(&d.id)
                     );
