@@ -50,8 +50,8 @@ pub struct DoorAudit {
     /// An entrance (a zone on one side only).
     pub exterior: bool,
     /// How an entrance is reached from outside: `ground` (its storey is at ground level) or
-    /// `terrain` (a door on a storey not at ground level that opens onto the terrain); `null` for other
-    /// doors.
+    /// `terrain` (a door on a storey not at ground level that opens onto the terrain); `null`
+    /// for other doors.
     pub entrance: Option<crate::level::Entrance>,
     /// Names of the zones on its two sides (`outside` for none).
     pub zones: Vec<String>,
