@@ -39,6 +39,7 @@ fn door(tag: &str, x: f64, width: f64) -> FloorDoor {
         roles: vec![],
         spaces: None,
         doorless: false,
+        terrain: false,
     }
 }
 

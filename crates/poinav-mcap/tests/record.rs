@@ -48,6 +48,7 @@ fn floor() -> Floor {
             roles: vec![Role::Transition],
             spaces: Some(vec!["room".into()]),
             doorless: false,
+            terrain: false,
         }],
         zones: vec![FloorZone {
             id: "room".into(),

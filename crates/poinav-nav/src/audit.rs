@@ -49,6 +49,10 @@ pub struct DoorAudit {
     pub grid_passable: bool,
     /// An entrance (a zone on one side only).
     pub exterior: bool,
+    /// How an entrance is reached from outside: `ground` (its storey is at ground level) or
+    /// `terrain` (a door on a storey not at ground level that opens onto the terrain); `null`
+    /// for other doors.
+    pub entrance: Option<crate::level::Entrance>,
     /// Names of the zones on its two sides (`outside` for none).
     pub zones: Vec<String>,
     /// The sides come from the spaces the door bounds (in IFC its IfcRelSpaceBoundary), not
@@ -213,6 +217,7 @@ pub fn audit_profile(nav: &Navigator<'_>, start: Option<&str>) -> Result<Profile
                 reason,
                 grid_passable: nav.grid_passable[s.node],
                 exterior: s.exterior(),
+                entrance: s.entrance(),
                 zones: s.zones.iter().map(|z| zone_label(s.floor, *z)).collect(),
                 sides_from_space_boundaries: s.from_spaces,
                 doorless: d.doorless,
@@ -401,16 +406,15 @@ pub fn audit_profile(nav: &Navigator<'_>, start: Option<&str>) -> Result<Profile
 /// How the report names an entrance (door node `node`) among the starts: `Level 1 door 184606
 /// into 101 ENTRY`: the storey, the door's name (for a Revit-style `Family:Type:Id` name its
 /// last part, else the GlobalId's first 8 characters when it has none) and the space it leads
-/// into (Name and LongName).
+/// into (Name and LongName); `, from the terrain` ends the label of a door on a storey not at
+/// ground level that opens onto the terrain ([`crate::level::Entrance::Terrain`]).
 pub fn entrance_label(nav: &Navigator<'_>, node: usize) -> String {
     let t = &nav.topology;
     let n = &t.nodes[node];
     let floor = &nav.building.floors[n.floor];
     let door = short_name(n.name.as_deref(), &n.element);
-    let into = t
-        .doors
-        .iter()
-        .find(|d| d.node == node)
+    let sides = t.doors.iter().find(|d| d.node == node);
+    let into = sides
         .and_then(|d| d.zones.iter().flatten().next())
         .map(|&z| {
             let z = &floor.zones[z];
@@ -425,7 +429,12 @@ pub fn entrance_label(nav: &Navigator<'_>, node: usize) -> String {
             }
         })
         .unwrap_or_default();
-    format!("{} door {door}{into}", floor.name)
+    let terrain = if sides.and_then(|d| d.entrance()) == Some(crate::level::Entrance::Terrain) {
+        ", from the terrain"
+    } else {
+        ""
+    };
+    format!("{} door {door}{into}{terrain}", floor.name)
 }
 
 /// A door's name for lists: the name, the last part of a Revit-style `Family:Type:Id` name,

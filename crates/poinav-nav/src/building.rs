@@ -260,6 +260,7 @@ mod tests {
             roles: vec![],
             spaces: None,
             doorless: false,
+            terrain: false,
         }
     }
 

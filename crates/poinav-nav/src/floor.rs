@@ -68,6 +68,12 @@ pub struct FloorDoor {
     /// fills): nothing opens or closes there, only its width decides whether a robot fits.
     #[serde(default)]
     pub doorless: bool,
+    /// Its side outside every space opens onto the terrain at its storey's walking level (a
+    /// hillside door on a storey that is not at ground level): an entrance all the same
+    /// ([`crate::level::Entrance::Terrain`]). Set by the IFC bridge (`poinav_sim::terrain`)
+    /// from the terrain's meshes; `false` on hand-built floors.
+    #[serde(default)]
+    pub terrain: bool,
 }
 
 /// A space (room, corridor) as a region.

@@ -15,6 +15,7 @@ use serde::Serialize;
 use crate::building::{door_status, passable, Building};
 use crate::floor::Floor;
 use crate::grid::{NavGrid, NONE};
+use crate::level::Entrance;
 use crate::polygon;
 
 /// What a node stands for.
@@ -118,10 +119,14 @@ pub struct DoorSides {
     /// courtyard), not outside: no entrance. Set by [`crate::Navigator`] from
     /// [`crate::grid::GridDoor::walled_in`].
     pub walled_in: bool,
-    /// Its storey is not at ground level ([`Building::at_ground`]): its side without a zone
-    /// is a balcony, a terrace, a light well or a drop, not the way in from outside: no
-    /// entrance.
+    /// Its storey is not at ground level ([`Building::at_ground`]) and it does not open onto
+    /// the terrain: its side without a zone is a balcony, a terrace, a light well or a drop,
+    /// not the way in from outside: no entrance.
     pub off_ground: bool,
+    /// Its side outside every space opens onto the terrain at its storey's walking level
+    /// ([`crate::FloorDoor::terrain`]): on a storey not at ground level it is an entrance all
+    /// the same ([`Entrance::Terrain`]).
+    pub terrain: bool,
 }
 
 impl DoorSides {
@@ -129,6 +134,16 @@ impl DoorSides {
     /// (never a doorway, nor a door into a walled-in room without a space).
     pub fn exterior(&self) -> bool {
         self.outside_side().is_some()
+    }
+
+    /// How an exterior door is reached from outside: from the terrain when its storey is not
+    /// at ground level, else from the ground; `None` for other doors.
+    pub fn entrance(&self) -> Option<Entrance> {
+        self.exterior().then_some(if self.terrain {
+            Entrance::Terrain
+        } else {
+            Entrance::Ground
+        })
     }
 
     /// The side (-1 or +1 along the frame's normal) that leads outside, for an exterior door.
@@ -352,7 +367,8 @@ impl Topology {
                     from_spaces,
                     doorless: floor.doors[k].doorless,
                     walled_in: false,
-                    off_ground: !building.at_ground(fi),
+                    off_ground: !building.at_ground(fi) && !floor.doors[k].terrain,
+                    terrain: !building.at_ground(fi) && floor.doors[k].terrain,
                 });
             }
         }
@@ -624,6 +640,7 @@ impl Topology {
                     NodeKind::Door => {
                         let sides = self.door(n.floor, n.index);
                         v["exterior"] = serde_json::json!(sides.is_some_and(|s| s.exterior()));
+                        v["entrance"] = serde_json::json!(sides.and_then(|s| s.entrance()));
                         v["sides_from"] =
                             serde_json::json!(if sides.is_some_and(|s| s.from_spaces) {
                                 "space-boundaries"

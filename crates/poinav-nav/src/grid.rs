@@ -73,7 +73,7 @@ pub struct GridOptions {
     /// The storey is at ground level (default), so a door with a zone on one side only may be
     /// an entrance and gets an apron; `false` (set per storey by [`crate::Navigator`] from
     /// [`crate::Building::at_ground`]): such a door leads onto a balcony or a drop and gets
-    /// none.
+    /// none, unless it opens onto the terrain ([`crate::FloorDoor::terrain`]).
     pub at_ground: bool,
 }
 
@@ -191,7 +191,8 @@ fn paint(
 /// wide as its passage and as deep as the apron; a door that joins no zone at all (a model
 /// without spaces) gets one on each side, so its passage can be planned through and checked.
 /// Doorways ([`crate::FloorDoor::doorless`]) with a zone on one side only get none, nor do
-/// doors of storeys not at ground level ([`GridOptions::at_ground`]). Each ring
+/// doors of storeys not at ground level ([`GridOptions::at_ground`]) unless they open onto
+/// the terrain ([`crate::FloorDoor::terrain`]). Each ring
 /// comes with the index of its door.
 pub fn entrance_aprons(
     floor: &Floor,
@@ -214,7 +215,11 @@ pub fn entrance_aprons(
         };
         let sides: &[f64] = match crate::graph::door_zones(floor, k) {
             // A doorway with a zone on one side leads into the undescribed, not outside.
-            [None, Some(_)] | [Some(_), None] if d.doorless || !options.at_ground => continue,
+            [None, Some(_)] | [Some(_), None]
+                if d.doorless || !(options.at_ground || d.terrain) =>
+            {
+                continue
+            }
             [None, Some(_)] => &[-1.0],
             [Some(_), None] => &[1.0],
             [None, None] => &[-1.0, 1.0],

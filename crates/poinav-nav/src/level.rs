@@ -1,5 +1,6 @@
 //! Where each storey's walking level comes from ([`FloorLevel`]) and which storeys are at
-//! ground level, where a door with one side outside is an entrance ([`ground_levels`]).
+//! ground level, where a door with one side outside is an entrance ([`ground_levels`]); on
+//! other storeys only a door that opens onto the terrain is ([`Entrance`]).
 
 use serde::{Deserialize, Serialize};
 
@@ -32,6 +33,28 @@ impl LevelSource {
     }
 }
 
+/// How an entrance (a door with a space on one side only whose other side is outside) is
+/// reached from outside.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Entrance {
+    /// On a storey at ground level ([`FloorLevel::at_ground`]).
+    Ground,
+    /// On a storey not at ground level (above or below), but its outside opens onto the
+    /// terrain at that storey's walking level (a hillside door, [`crate::FloorDoor::terrain`]).
+    Terrain,
+}
+
+impl Entrance {
+    /// `ground`, `terrain`.
+    pub fn label(self) -> &'static str {
+        match self {
+            Entrance::Ground => "ground",
+            Entrance::Terrain => "terrain",
+        }
+    }
+}
+
 /// One storey's level: what the model says and what robots walk on.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct FloorLevel {
@@ -43,7 +66,8 @@ pub struct FloorLevel {
     pub from: LevelSource,
     /// The storey is at ground level: a door with a space on one side only whose other side
     /// is outside is an entrance there; on other storeys it leads onto a balcony, a terrace,
-    /// a light well or a drop, never into the building from outside.
+    /// a light well or a drop, never into the building from outside, unless it opens onto
+    /// the terrain ([`Entrance::Terrain`]).
     pub at_ground: bool,
 }
 

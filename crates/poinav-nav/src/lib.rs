@@ -48,6 +48,7 @@
 //!         roles: vec![],
 //!         spaces: None,
 //!         doorless: false,
+//!         terrain: false,
 //!     }],
 //!     zones: vec![zone("West", rect(0.0, 0.0, 4.0, 4.0)), zone("East", rect(4.2, 0.0, 8.2, 4.0))],
 //! };
@@ -84,7 +85,7 @@ pub use error::NavError;
 pub use floor::{Floor, FloorDoor, FloorObstacle, FloorZone, ObstacleKind};
 pub use graph::Topology;
 pub use grid::{CellState, FurnitureMode, GridOptions, InflationOptions, NavGrid, OccupancyGrid};
-pub use level::{FloorLevel, LevelSource};
+pub use level::{Entrance, FloorLevel, LevelSource};
 pub use nav2::{write_bundle, write_bundle_with_progress, Nav2Options};
 pub use navigator::{NavOptions, Navigator};
 pub use progress::{Phase, Progress};

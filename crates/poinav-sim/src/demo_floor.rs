@@ -117,6 +117,7 @@ pub fn demo_floor(
                 roles: roles(c),
                 spaces: None,
                 doorless: false,
+                terrain: false,
             });
         }
         gaps.sort_by(|a, b| a.0.total_cmp(&b.0));

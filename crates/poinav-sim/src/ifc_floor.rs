@@ -154,6 +154,7 @@ pub fn floor_from_plan(plan: &FloorPlan, classification: &Classification) -> Flo
             roles: roles(c),
             spaces: None,
             doorless: false,
+            terrain: false,
         });
     }
     // Doorways (openings no door fills): open whatever the model says, as wide as they are.
@@ -180,6 +181,7 @@ pub fn floor_from_plan(plan: &FloorPlan, classification: &Classification) -> Flo
             roles: roles(c),
             spaces: None,
             doorless: true,
+            terrain: false,
         });
     }
     floor
@@ -264,6 +266,11 @@ pub fn building_from_plans(
     // it stands on (a drop where the floor slab has no hole modelled).
     for (floor, obstacle) in vertical.shadows {
         floors[floor].obstacles.push(obstacle);
+    }
+    // Doors above (or below) ground level that open onto the terrain are entrances too.
+    if levels.iter().any(|l| !l.at_ground) {
+        let terrain = crate::terrain::terrain_of(model, meshes);
+        crate::terrain::mark_terrain_doors(model, meshes, plans, &mut floors, &levels, &terrain);
     }
     (
         poinav_nav::Building {

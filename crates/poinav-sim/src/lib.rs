@@ -35,6 +35,7 @@ pub mod samples;
 pub mod scenario;
 pub mod sensor;
 pub mod step;
+pub mod terrain;
 pub mod trace;
 pub mod vertical;
 pub mod world;

@@ -47,6 +47,7 @@ fn floor(w: f64, t: f64) -> Floor {
             roles: vec![Role::Transition],
             spaces: None,
             doorless: false,
+            terrain: false,
         }],
         zones: vec![
             FloorZone {

@@ -3,10 +3,10 @@
 //! below its slab, a U-shaped stair, a stairwell hole in the upper slab, one-sided space
 //! boundaries on the upper floor, a balcony door) and as properties over every corpus model:
 //! reachable spaces are joined to reachable ones or an entrance (a lift's own space to a
-//! reachable one at its landings), entrances are on the
-//! building's outside at ground level, stairs and ramps connect storeys for a legged robot
-//! with landings free in the grid and in a zone, and every cell over a hole in a floor slab
-//! is occupied (or keepout) in the Nav2 map.
+//! reachable one at its landings), entrances are on the building's outside at ground level
+//! (above it only onto the terrain, see `terrain_entrances.rs`), stairs and ramps connect
+//! storeys for a legged robot with landings free in the grid and in a zone, and every cell
+//! over a hole in a floor slab is occupied (or keepout) in the Nav2 map.
 
 use std::path::{Path, PathBuf};
 
@@ -15,7 +15,8 @@ use poinav_geom::{floor_plans, PlanOptions, PlanSource};
 use poinav_ifc::Model;
 use poinav_nav::graph::{zone_at, NodeKind};
 use poinav_nav::{
-    audit::audit_profile, Building, CellState, ConnectionKind, LevelSource, NavOptions, Navigator,
+    audit::audit_profile, Building, CellState, ConnectionKind, Entrance, LevelSource, NavOptions,
+    Navigator,
 };
 use poinav_poi::{classify, Locomotion, RobotProfile, RuleSet};
 
@@ -251,12 +252,22 @@ fn check_properties(name: &str, file: &Path, b: &Building, nav: &Navigator<'_>) 
             ));
         }
     }
-    // Entrances: at ground level, nothing beyond the outside face, not walled in.
+    // Entrances: at ground level (or onto the terrain), nothing beyond the outside face, not
+    // walled in.
     for d in t.doors.iter().filter(|d| d.exterior()) {
         let floor = &b.floors[d.floor];
         let label = format!("{name}: entrance {:?}", floor.doors[d.door].name);
-        if !b.at_ground(d.floor) {
-            problems.push(format!("{label} is on storey {} above ground", floor.name));
+        let kind = if b.at_ground(d.floor) {
+            Entrance::Ground
+        } else {
+            Entrance::Terrain
+        };
+        if d.entrance() != Some(kind) {
+            problems.push(format!(
+                "{label} on storey {} is {:?}, not {kind:?}",
+                floor.name,
+                d.entrance()
+            ));
         }
         if let (Some(f), Some(side)) = (floor.door_frame(d.door), d.outside_side()) {
             let p = f.center + f.normal * side * (f.half_depth + 0.3);

@@ -390,6 +390,15 @@ pub fn audit(args: &AuditArgs) -> anyhow::Result<ExitCode> {
                 p.doors.len(),
                 p.doors.len() - doorways,
             );
+            for d in &p.doors {
+                if d.entrance == Some(poinav_nav::Entrance::Terrain) {
+                    outln!(
+                        "  entrance from the terrain: {} door {} (storey not at ground level)",
+                        d.floor_name,
+                        d.name.as_deref().unwrap_or(&d.id)
+                    );
+                }
+            }
             for t in &p.transitions {
                 if t.status == poinav_poi::AccessibilityStatus::PendingValidation {
                     outln!(

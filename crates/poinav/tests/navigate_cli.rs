@@ -1,6 +1,7 @@
 //! `poinav route`, `poinav audit` and `poinav export nav2` on the paper's test building and on
 //! office-a.ifc: routes through the right doors, a narrowed door makes its room unreachable
-//! with the door named, and the Nav2 bundle follows nav2_map_server's conventions.
+//! with the door named, and the Nav2 bundle follows nav2_map_server's conventions; a hillside
+//! house's upper door onto the terrain is an entrance the audit names.
 
 mod common;
 
@@ -250,6 +251,7 @@ fn routes_start_outside_and_the_cli_warns_of_what_limits_navigation() {
         .unwrap();
     assert_eq!(front["zones"], serde_json::json!(["1", "outside"]));
     assert_eq!(front["sides_from_space_boundaries"], true);
+    assert_eq!(front["entrance"], "ground");
     assert_eq!(
         (
             front["exterior"].as_bool(),
@@ -453,5 +455,55 @@ fn the_plan_draws_and_counts_office_a_lift_doorway() {
     assert!(
         svg.contains(r#"data-global-id="27TOPmxCrDgPimmYCM5z6f" data-class="IfcOpeningElement""#),
         "the lift doorway's passage is drawn"
+    );
+}
+
+#[test]
+fn the_audit_names_an_entrance_from_the_terrain() {
+    // The hillside house (tests/ifcos/author_hillside.py): its upper floor is reached only
+    // through the hillside door, which opens onto an IfcGeographicElement TERRAIN.
+    let dir = tempfile::tempdir().unwrap();
+    let py = poinav_testkit::python("ifcopenshell");
+    let info = poinav_testkit::ifcos_with(&py, "author_hillside.py", &[dir.path().as_os_str()]);
+    let file = dir
+        .path()
+        .join(info["files"]["geographic"].as_str().unwrap());
+    let report = dir.path().join("audit/report.html");
+    let audit = |json: bool| {
+        let mut args = vec![
+            OsStr::new("audit"),
+            file.as_os_str(),
+            OsStr::new("-o"),
+            report.as_os_str(),
+        ];
+        if json {
+            args.push(OsStr::new("--json"));
+        }
+        let (code, out, err) = run(&args);
+        assert_eq!(code, 0, "{err}");
+        out
+    };
+    let text = audit(false);
+    assert!(text.contains("spaces 3 reachable, 0 not"), "{text}");
+    assert!(
+        text.contains("  entrance from the terrain: Upper floor door Hillside door (storey not at ground level)"),
+        "{text}"
+    );
+    let json: serde_json::Value = serde_json::from_str(&audit(true)).unwrap();
+    let profile = &json["profiles"][0];
+    let entrances: Vec<(&str, &str)> = profile["doors"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|d| d["exterior"] == true)
+        .map(|d| (d["name"].as_str().unwrap(), d["entrance"].as_str().unwrap()))
+        .collect();
+    assert_eq!(
+        entrances,
+        [("Front door", "ground"), ("Hillside door", "terrain")]
+    );
+    assert_eq!(
+        profile["starts"][1],
+        "Upper floor door Hillside door into Upper hall Upper hall, from the terrain"
     );
 }

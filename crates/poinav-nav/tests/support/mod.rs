@@ -51,6 +51,7 @@ pub fn door(id: &str, name: &str, ring: Vec<DVec2>, clear_width_m: f64) -> Floor
         roles,
         spaces: None,
         doorless: false,
+        terrain: false,
     }
 }
 
