@@ -1,14 +1,15 @@
 //! `IfcCurve` as a 2D polyline in metres: `IfcPolyline`, `IfcIndexedPolyCurve` (line and arc
-//! segments), `IfcCompositeCurve`, `IfcTrimmedCurve` of a circle, ellipse or line, and whole
+//! segments), `IfcCompositeCurve`, `IfcTrimmedCurve` of a circle, ellipse, line or polyline
+//! (the polyline trimmed by [`crate::curve3d`]), and whole
 //! `IfcCircle` / `IfcEllipse`. Arcs are approximated by chords (see [`MAX_ARC_STEP`]).
 
 use std::f64::consts::TAU;
 
-use glam::{DAffine2, DVec2};
+use glam::{DAffine2, DVec2, DVec3};
 use poinav_ifc::{Entity, Value};
 
 use crate::axis2_placement::axis2placement;
-use crate::cartesian_point::{point2, point_list};
+use crate::cartesian_point::{point2, point3, point_list};
 use crate::error::{degenerate, missing, required_ref, unsupported, GeomError};
 use crate::unit_assignment::Units;
 
@@ -149,8 +150,9 @@ pub fn arc_through(a: DVec2, b: DVec2, c: DVec2) -> Vec<DVec2> {
     out
 }
 
-/// Points on the circle `centre`, `radius` from angle `t0` over `sweep` (signed) radians.
-fn sample_arc(centre: DVec2, radius: f64, t0: f64, sweep: f64) -> Vec<DVec2> {
+/// Points on the circle `centre`, `radius` from angle `t0` over `sweep` (signed) radians,
+/// one chord per [`MAX_ARC_STEP`] at most.
+pub(crate) fn sample_arc(centre: DVec2, radius: f64, t0: f64, sweep: f64) -> Vec<DVec2> {
     let n = ((sweep.abs() / MAX_ARC_STEP).ceil() as usize).max(1);
     (0..=n)
         .map(|i| centre + radius * DVec2::from_angle(t0 + sweep * i as f64 / n as f64))
@@ -213,21 +215,26 @@ impl Conic {
     }
 }
 
-/// One end of a trimmed curve: a point, a parameter, or both.
+/// One end of a trimmed curve: a point (metres), a parameter (file units), or both.
 #[derive(Default)]
-struct Trim {
-    point: Option<DVec2>,
-    parameter: Option<f64>,
+pub(crate) struct Trim {
+    pub(crate) point: Option<DVec3>,
+    pub(crate) parameter: Option<f64>,
 }
 
-fn read_trim(e: &Entity<'_>, attribute: &'static str, s: f64) -> Result<Trim, GeomError> {
+/// The `Trim1` or `Trim2` (`attribute`) of the trimmed curve `e`, points scaled by `s`.
+pub(crate) fn read_trim(
+    e: &Entity<'_>,
+    attribute: &'static str,
+    s: f64,
+) -> Result<Trim, GeomError> {
     let v = e.get(attribute).ok_or_else(|| missing(e, attribute))?;
     let mut trim = Trim::default();
     for item in v.as_list().unwrap_or_default() {
         match item {
             Value::Ref(id) => {
                 let p = e.model().entity(*id).ok_or_else(|| missing(e, attribute))?;
-                trim.point = Some(point2(p)? * s);
+                trim.point = Some(point3(p)? * s);
             }
             Value::Typed(_, inner) => trim.parameter = inner.as_f64(),
             _ => {}
@@ -239,7 +246,7 @@ fn read_trim(e: &Entity<'_>, attribute: &'static str, s: f64) -> Result<Trim, Ge
     Ok(trim)
 }
 
-/// `IfcTrimmedCurve` on an `IfcCircle`, `IfcEllipse` or `IfcLine`. Parameters of conics are
+/// `IfcTrimmedCurve` on an `IfcCircle`, `IfcEllipse`, `IfcLine` or `IfcPolyline`. Parameters of conics are
 /// plane angles in the file's angle unit; the `MasterRepresentation` decides when both a
 /// point and a parameter are given.
 fn trimmed_curve(curve: Entity<'_>, units: &Units) -> Result<Vec<DVec2>, GeomError> {
@@ -254,9 +261,9 @@ fn trimmed_curve(curve: Entity<'_>, units: &Units) -> Result<Vec<DVec2>, GeomErr
         let conic = Conic::read(basis, units)?;
         let param = |t: &Trim| -> f64 {
             match (t.point, t.parameter) {
-                (Some(p), Some(_)) if prefer_point => conic.parameter_of(p),
+                (Some(p), Some(_)) if prefer_point => conic.parameter_of(p.truncate()),
                 (_, Some(u)) => u * units.radians_per_unit,
-                (Some(p), None) => conic.parameter_of(p),
+                (Some(p), None) => conic.parameter_of(p.truncate()),
                 (None, None) => 0.0,
             }
         };
@@ -284,13 +291,17 @@ fn trimmed_curve(curve: Entity<'_>, units: &Units) -> Result<Vec<DVec2>, GeomErr
                 .truncate();
         let magnitude = vector.get_f64("Magnitude").unwrap_or(1.0) * s;
         let at = |t: &Trim| match (t.point, t.parameter) {
-            (Some(p), Some(_)) if prefer_point => p,
+            (Some(p), Some(_)) if prefer_point => p.truncate(),
             (_, Some(u)) => origin + dir * u * magnitude,
-            (Some(p), None) => p,
+            (Some(p), None) => p.truncate(),
             (None, None) => origin,
         };
         let (a, b) = (at(&t1), at(&t2));
         Ok(if sense { vec![a, b] } else { vec![b, a] })
+    } else if basis.is_a("IfcPolyline") {
+        // Parameters of a polyline: point index (from 0) plus the fraction of the segment.
+        let path = crate::curve3d::path(curve, units)?;
+        Ok(path.points.iter().map(|p| p.truncate()).collect())
     } else {
         Err(unsupported(&basis, "basis curve of a trimmed curve"))
     }

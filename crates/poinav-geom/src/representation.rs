@@ -1,5 +1,6 @@
 //! `IfcShapeRepresentation` and its `IfcRepresentationItem`s evaluated to world points in
-//! metres: extrusions (with their exact outline when vertical), faceted breps, face sets,
+//! metres: extrusions (with their exact outline when vertical), swept disks and areas swept
+//! along a directrix and open-profile extrusions (the vertices of their meshes), faceted breps, face sets,
 //! surface models, bounding boxes, boolean results (first operand) and mapped items.
 
 use std::collections::HashSet;
@@ -11,8 +12,11 @@ use crate::axis2_placement::axis2placement;
 use crate::cartesian_point::{point3, point_list};
 use crate::cartesian_transformation_operator::transformation;
 use crate::error::{degenerate, missing, required_ref, unsupported, GeomError};
+use crate::open_profile::is_open_profile_extrusion;
 use crate::polygon;
 use crate::profile;
+use crate::representation_mesh::ItemMesher;
+use crate::swept_area::is_directrix_swept_area_solid;
 use crate::unit_assignment::Units;
 
 /// Deepest nesting of mapped items followed.
@@ -192,6 +196,26 @@ fn evaluate_item(
             current = first;
         }
         Err(degenerate(&item, "boolean results nested too deeply"))
+    } else if item.is_a("IfcSweptDiskSolid")
+        || is_directrix_swept_area_solid(&item)
+        || is_open_profile_extrusion(&item)
+    {
+        // Swept along a curve (or an open surface): the vertices of the item's mesh.
+        let parts = ItemMesher::new(*units).item(item, depth)?;
+        let points: Vec<DVec3> = parts
+            .iter()
+            .flat_map(|p| p.mesh.positions.iter())
+            .map(|p| t.transform_point3(*p))
+            .collect();
+        if points.is_empty() {
+            return Err(degenerate(&item, "no vertices"));
+        }
+        out.items.push(ItemGeometry {
+            id: item.id(),
+            outline: None,
+            points,
+        });
+        Ok(())
     } else if item.is_a("IfcExtrudedAreaSolid") {
         let (geometry, concave) = extrusion(item, t, units)?;
         if geometry.outline.is_none() && concave {

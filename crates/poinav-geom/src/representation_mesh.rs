@@ -1,5 +1,5 @@
 //! The items of an `IfcShapeRepresentation` as triangle meshes in the representation's
-//! coordinates (metres): extrusions, faceted breps, surface models, tessellated face sets,
+//! coordinates (metres): extrusions (of open profiles too: surfaces), swept disks and areas swept along a directrix, faceted breps, surface models, tessellated face sets,
 //! boxes and CSG primitives, boolean results (clipping by half-spaces, differences, unions
 //! and intersections of solids) and mapped items (nested, with any
 //! `IfcCartesianTransformationOperator`, mirrored or non-uniformly scaled).
@@ -23,9 +23,12 @@ use crate::extrusion::{extrude, extruded_area_solid};
 use crate::face_set::face_set_mesh;
 use crate::half_space::half_space;
 use crate::mesh::Mesh;
+use crate::open_profile::{extruded_open_profile, is_open_profile_extrusion};
 use crate::parameterized_profile::ellipse;
 use crate::profile::ProfileArea;
 use crate::surface_style::item_colour;
+use crate::swept_area::{directrix_swept_area_solid, is_directrix_swept_area_solid};
+use crate::swept_disk::swept_disk_solid;
 use crate::unit_assignment::Units;
 
 /// Deepest nesting of mapped items, CSG trees and boolean operands followed.
@@ -160,11 +163,20 @@ impl ItemMesher {
                 .get_ref("TreeRootExpression")
                 .ok_or_else(|| missing(&item, "TreeRootExpression"))?;
             self.item(root, depth + 1)
+        } else if is_open_profile_extrusion(&item) {
+            let mesh = extruded_open_profile(item, &self.units)?;
+            self.leaf(&item, mesh, false)
         } else if item.is_a("IfcExtrudedAreaSolid") {
             if item.is_a("IfcExtrudedAreaSolidTapered") {
                 return Err(unsupported(&item, "tapered extrusion"));
             }
             let mesh = extruded_area_solid(item, &self.units)?;
+            self.leaf(&item, mesh, true)
+        } else if item.is_a("IfcSweptDiskSolid") {
+            let mesh = swept_disk_solid(item, &self.units)?;
+            self.leaf(&item, mesh, true)
+        } else if is_directrix_swept_area_solid(&item) {
+            let mesh = directrix_swept_area_solid(item, &self.units)?;
             self.leaf(&item, mesh, true)
         } else if item.is_a("IfcManifoldSolidBrep")
             || item.is_a("IfcFaceBasedSurfaceModel")
