@@ -62,15 +62,6 @@ impl Path {
         self.points.windows(2).map(|w| w[0].distance(w[1])).sum()
     }
 
-    /// True when the path returns to its first point (a ring).
-    pub fn is_closed(&self) -> bool {
-        let n = self.points.len();
-        n > 3 && {
-            let (a, b) = (self.points[0], self.points[n - 1]);
-            a.distance(b) <= 1e-9 * a.length().max(1.0).max(self.length())
-        }
-    }
-
     /// The part of the path between parameters `start` and `end` (`None`: the path's own
     /// end), in the path's direction; parameters beyond the path's range are clamped to it.
     pub fn trimmed(&self, start: Option<f64>, end: Option<f64>) -> Path {
