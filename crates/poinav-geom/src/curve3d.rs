@@ -98,6 +98,20 @@ impl Path {
         out
     }
 
+    /// The parameter `length` metres along the path from its start (clamped to the path).
+    pub fn parameter_at_length(&self, length: f64) -> f64 {
+        let mut along = 0.0;
+        for i in 0..self.points.len().saturating_sub(1) {
+            let d = self.points[i].distance(self.points[i + 1]);
+            if along + d >= length && d > 0.0 {
+                let f = ((length - along) / d).clamp(0.0, 1.0);
+                return self.params[i] + f * (self.params[i + 1] - self.params[i]);
+            }
+            along += d;
+        }
+        self.params.last().copied().unwrap_or(0.0)
+    }
+
     /// The point where `sign * parameter` equals `k` (within the path's range).
     fn at_key(&self, k: f64, sign: f64) -> DVec3 {
         for i in 0..self.points.len() - 1 {
@@ -415,6 +429,9 @@ mod tests {
         assert_eq!(t.points.len(), 3);
         assert!((t.points[0] - DVec3::new(0.5, 0.0, 0.0)).length() < 1e-12);
         assert!((t.points[2] - DVec3::new(2.0, 2.0, 0.5)).length() < 1e-12);
+        assert!((p.parameter_at_length(2.5) - (1.0 + 0.5 / 17f64.sqrt())).abs() < 1e-12);
+        assert_eq!(p.parameter_at_length(-1.0), 0.0);
+        assert_eq!(p.parameter_at_length(99.0), 2.0);
         // Out-of-range parameters are clamped: the whole path.
         assert_eq!(p.trimmed(Some(-1.0), Some(9.0)), p);
         let tc = path(m.entity(EntityId(5)).unwrap(), &Units::SI).unwrap();

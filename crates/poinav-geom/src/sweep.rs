@@ -222,25 +222,38 @@ mod tests {
 
     #[test]
     fn frames_do_not_twist_on_a_helix() {
-        // A helix of radius 1 rising 0.5 per turn, two turns in 5 degree steps. Parallel
-        // transport keeps each section's x axis free of rotation about the path: between
-        // consecutive segments the x axis turns only as much as the direction does.
+        // A helix (cos t, sin t, c t) rising 0.5 per turn, two turns in 5 degree chords. A
+        // frame without twist turns against the Frenet frame (normal towards the axis) at
+        // the torsion's rate: by -c / sqrt(1 + c^2) per radian of t, about -57 degrees here;
+        // a Frenet frame, or one kept towards the axis or the vertical, would not turn at all.
+        let c = 0.5 / TAU;
+        let step = TAU / 72.0;
         let pts: Vec<DVec3> = (0..=144)
             .map(|i| {
-                let t = TAU * i as f64 / 72.0;
-                DVec3::new(t.cos(), t.sin(), 0.5 * t / TAU)
+                let t = step * i as f64;
+                DVec3::new(t.cos(), t.sin(), c * t)
             })
             .collect();
         let dirs: Vec<DVec3> = pts.windows(2).map(|w| (w[1] - w[0]).normalize()).collect();
         let lengths: Vec<f64> = pts.windows(2).map(|w| w[0].distance(w[1])).collect();
         let xs = section_x(&dirs, SectionAxes::RotationMinimising, false, &lengths);
+        let angle = |i: usize| {
+            let t = step * (i as f64 + 0.5);
+            let normal = DVec3::new(-t.cos(), -t.sin(), 0.0);
+            let binormal = dirs[i].cross(normal);
+            xs[i].dot(binormal).atan2(xs[i].dot(normal))
+        };
+        let mut turned = 0.0;
         for i in 1..xs.len() {
             assert!(xs[i].dot(dirs[i]).abs() < 1e-12);
-            // Twist: the rotation of x about the direction, beyond the least rotation.
-            let moved = DQuat::from_rotation_arc(dirs[i - 1], dirs[i]) * xs[i - 1];
-            let twist = moved.cross(xs[i]).dot(dirs[i]);
-            assert!(twist.abs() < 1e-12, "segment {i}: twist {twist}");
+            let d = angle(i) - angle(i - 1);
+            turned += (d + PI).rem_euclid(TAU) - PI;
         }
+        let expected = -c / (1.0 + c * c).sqrt() * step * 143.0;
+        assert!(
+            (turned / expected - 1.0).abs() < 0.01,
+            "{turned} vs {expected}"
+        );
         let mesh = sweep(&[disk(0.05, 24)], &pts, SectionAxes::RotationMinimising).unwrap();
         // Volume: section area times path length (mitred joints neither add nor lose any).
         let area = 0.5 * 24.0 * 0.05f64.powi(2) * (TAU / 24.0).sin();

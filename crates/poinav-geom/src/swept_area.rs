@@ -104,4 +104,22 @@ mod tests {
             assert!((v - 0.204).abs() < 1e-9, "#{id}: {v}");
         }
     }
+
+    #[test]
+    fn ifc4x3_lengths_trim_along_the_directrix() {
+        // StartParam and EndParam as IfcLengthMeasure: 1 m and 5 m along an L of 3 m + 4 m
+        // (the polyline's parameters would be 1/3 and 1.5).
+        let text = "ISO-10303-21;HEADER;FILE_SCHEMA(('IFC4X3_ADD2'));ENDSEC;DATA;\n\
+            #1=IFCCARTESIANPOINT((0.,0.));#2=IFCAXIS2PLACEMENT2D(#1,$);\
+            #3=IFCRECTANGLEPROFILEDEF(.AREA.,$,#2,0.2,0.2);\
+            #4=IFCCARTESIANPOINT((0.,0.,0.));#5=IFCCARTESIANPOINT((3.,0.,0.));\
+            #6=IFCCARTESIANPOINT((3.,4.,0.));#7=IFCPOLYLINE((#4,#5,#6));#8=IFCDIRECTION((0.,0.,1.));\
+            #9=IFCFIXEDREFERENCESWEPTAREASOLID(#3,$,#7,IFCLENGTHMEASURE(1.),IFCLENGTHMEASURE(5.),#8);\n\
+            ENDSEC;END-ISO-10303-21;";
+        let m = Model::from_bytes("t.ifc", text.as_bytes().to_vec()).unwrap();
+        let mesh = directrix_swept_area_solid(m.entity(EntityId(9)).unwrap(), &Units::SI).unwrap();
+        let (lo, hi) = mesh.bounds().unwrap();
+        assert!(lo.distance(DVec3::new(1.0, -0.1, -0.1)) < 1e-9, "{lo}");
+        assert!(hi.distance(DVec3::new(3.1, 2.0, 0.1)) < 1e-9, "{hi}");
+    }
 }

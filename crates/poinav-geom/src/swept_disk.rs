@@ -5,7 +5,7 @@
 //! Also the directrix reading shared with the swept area solids ([`directrix_path`]).
 
 use glam::{DVec2, DVec3};
-use poinav_ifc::Entity;
+use poinav_ifc::{Entity, Value};
 
 use crate::curve3d::{self, arc_through_3d, Path};
 use crate::error::{degenerate, missing, required_ref, GeomError};
@@ -61,14 +61,26 @@ pub fn swept_disk_solid(item: Entity<'_>, units: &Units) -> Result<Mesh, GeomErr
 }
 
 /// The `Directrix` of a swept solid as a path, trimmed to its `StartParam` and `EndParam`
-/// ([`Path::trimmed`]). `StartParam` 0 with `EndParam` equal to the directrix's length (in
-/// file units, within 0.5 %) is read as the whole directrix, as exporters write it.
+/// ([`Path::trimmed`]); an IFC4X3 `IfcLengthMeasure` there is a length along the directrix
+/// from its start. `StartParam` 0 with `EndParam` equal to the directrix's length (in file
+/// units, within 0.5 %) is read as the whole directrix, as exporters write it.
 pub(crate) fn directrix_path(item: Entity<'_>, units: &Units) -> Result<Path, GeomError> {
     let directrix = required_ref(&item, "Directrix", "IfcCurve")?;
     let path = curve3d::path(directrix, units)?;
-    let (start, end) = (item.get_f64("StartParam"), item.get_f64("EndParam"));
-    if let (Some(a), Some(b)) = (start, end) {
-        let length = path.length() / units.metres_per_unit;
+    let s = units.metres_per_unit;
+    let param = |name: &str| -> Option<f64> {
+        let v = item.get(name)?;
+        let u = v.as_f64()?;
+        match v {
+            Value::Typed(kind, _) if kind.eq_ignore_ascii_case("IFCLENGTHMEASURE") => {
+                Some(path.parameter_at_length(u * s))
+            }
+            _ => Some(u),
+        }
+    };
+    let (start, end) = (param("StartParam"), param("EndParam"));
+    if let (Some(a), Some(b)) = (item.get_f64("StartParam"), item.get_f64("EndParam")) {
+        let length = path.length() / s;
         if a == 0.0 && (b - length).abs() <= 0.005 * length {
             return Ok(path);
         }
