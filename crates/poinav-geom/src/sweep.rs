@@ -49,15 +49,19 @@ pub fn sweep(areas: &[ProfileArea], path: &[DVec3], axes: SectionAxes) -> Option
         return None;
     }
     let scale = pts.iter().map(|p| p.length()).fold(1.0, f64::max);
-    let closed = pts.len() > 3 && pts[0].distance(pts[pts.len() - 1]) <= 1e-9 * scale;
+    let sharp = |a: DVec3, b: DVec3| a.angle_between(b) > MAX_MITRE_TURN;
+    let n = pts.len();
+    // A ring with a corner too sharp to mitre is swept as an open path split there.
+    let closed = n > 3
+        && pts[0].distance(pts[n - 1]) <= 1e-9 * scale
+        && !sharp(pts[n - 1] - pts[n - 2], pts[1] - pts[0]);
     let mut mesh = Mesh::default();
     if closed {
         piece(areas, &pts, axes, true, &mut mesh)?;
     } else {
         let mut start = 0;
-        for i in 1..pts.len() - 1 {
-            let (a, b) = (pts[i] - pts[i - 1], pts[i + 1] - pts[i]);
-            if a.angle_between(b) > MAX_MITRE_TURN {
+        for i in 1..n - 1 {
+            if sharp(pts[i] - pts[i - 1], pts[i + 1] - pts[i]) {
                 piece(areas, &pts[start..=i], axes, false, &mut mesh)?;
                 start = i;
             }
@@ -299,6 +303,27 @@ mod tests {
             "{lo} {hi}"
         );
         assert!((hi.z - 2.0).abs() < 1e-9, "{hi}");
+    }
+
+    #[test]
+    fn hairpin_is_split_not_mitred_to_a_spike() {
+        // Out 2 m and back 0.5 m beside itself (a 170 degree turn): two capped pieces, no
+        // point further than the radius from the path.
+        let pts = [
+            DVec3::ZERO,
+            DVec3::new(2.0, 0.0, 0.0),
+            DVec3::new(1.5, 0.1, 0.0),
+        ];
+        let mesh = sweep(&[disk(0.05, 24)], &pts, SectionAxes::RotationMinimising).unwrap();
+        let (lo, hi) = mesh.bounds().unwrap();
+        assert!(hi.x <= 2.05 + 1e-9 && lo.x >= -1e-9, "{lo} {hi}");
+        assert!(
+            hi.y <= 0.1 + 0.05 + 1e-9 && lo.y >= -0.05 - 1e-9,
+            "{lo} {hi}"
+        );
+        let area = 0.5 * 24.0 * 0.05f64.powi(2) * (TAU / 24.0).sin();
+        let length = 2.0 + (0.25f64 + 0.01).sqrt();
+        assert!((mesh.volume() / (area * length) - 1.0).abs() < 1e-9);
     }
 
     #[test]
