@@ -14,16 +14,18 @@ use crate::profile::ProfileArea;
 use crate::sweep::{sweep, SectionAxes};
 use crate::unit_assignment::Units;
 
-/// Segments of the polygon standing for the disk's circle: a 24-gon (15 degrees per side)
+/// Segments of the polygon standing for the disk's circle: a 16-gon (22.5 degrees per side)
 /// whose corners lie [`DISK_CORNER_SCALE`] times the radius out, so that its boundary strays
-/// at most 0.43 % of the radius from the circle (half what an inscribed one does) and its area
-/// is within 0.3 % of the circle's.
-pub const DISK_SEGMENTS: usize = 24;
+/// at most 0.98 % of the radius from the circle (half what an inscribed one does) and its area
+/// is 0.63 % less than the circle's. Reinforcement models hold tens of thousands of bars, so
+/// each side counts: 16 sides keep a tube's volume within 1 % with a third fewer triangles
+/// than 24.
+pub const DISK_SEGMENTS: usize = 16;
 
 /// The distance of the disk polygon's corners from its centre, in radii: `(1 + sec(pi / n)) /
 /// 2` for [`DISK_SEGMENTS`] = n, so corners lie as far outside the circle as the sides'
 /// middles lie inside it.
-pub const DISK_CORNER_SCALE: f64 = 1.004_314_480_290_076_5;
+pub const DISK_CORNER_SCALE: f64 = 1.009_795_579_104_159_3;
 
 /// The closed mesh of an `IfcSweptDiskSolid` (or `...Polygonal`) in its representation's
 /// coordinates, metres.
@@ -174,10 +176,10 @@ mod tests {
         let exact = PI * (0.1f64.powi(2) - 0.08f64.powi(2)) * 7.0;
         let v = tube.volume();
         assert!((v / exact - 1.0).abs() < 0.01, "{v} vs {exact}");
-        // The 24-gon: 12 sin(15 deg) (corner radius)^2 against pi r^2.
-        let ratio = 12.0 * (PI / 12.0).sin() * DISK_CORNER_SCALE.powi(2) / PI;
+        // The 16-gon: 8 sin(22.5 deg) (corner radius)^2 against pi r^2.
+        let ratio = 8.0 * (PI / 8.0).sin() * DISK_CORNER_SCALE.powi(2) / PI;
         assert!((v / (exact * ratio) - 1.0).abs() < 1e-9);
-        assert!((ratio - 1.0).abs() < 0.003, "{ratio}");
+        assert!((ratio - 1.0).abs() < 0.007, "{ratio}");
         // StartParam 0, EndParam = the length: the whole bar; 0.5..1.5: half of each leg.
         let whole = mesh(11).unwrap();
         assert!((whole.bounds().unwrap().1.z - 3.0).abs() < 1e-9);
