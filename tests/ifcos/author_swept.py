@@ -3,9 +3,10 @@ swept_vs_ifcopenshell test.
 
 Usage: .venv/bin/python tests/ifcos/author_swept.py OUTDIR
 
-Writes OUTDIR/swept-ifc4.ifc and OUTDIR/swept-ifc4x3.ifc (metres, radians; one storey each,
-one element per case, named after its case), meshes every element with ifcopenshell.geom
-(world coordinates, default settings) and prints one JSON object mapping each case name to
+Writes OUTDIR/swept-ifc4.ifc and OUTDIR/swept-ifc4x3.ifc (metres, radians) and
+OUTDIR/swept-ifc2x3.ifc (millimetres, degrees), one storey each, one element per case, named
+after its case; meshes every element with ifcopenshell.geom (world coordinates, default
+settings) and prints one JSON object mapping each case name to
 
   file           the file name the element is in
   class          its IFC class
@@ -24,7 +25,8 @@ a non-planar polyline, a composite curve of a line, a trimmed circle arc and a r
 trimmed by points; IfcSweptDiskSolidPolygonal with FilletRadius; StartParam/EndParam trims;
 IfcSurfaceCurveSweptAreaSolid, IfcFixedReferenceSweptAreaSolid (with a Position) and the
 IFC4X3 IfcDirectrixDerivedReferenceSweptAreaSolid; an IfcArbitraryOpenProfileDef on a
-trimmed polyline and an IfcCenterLineProfileDef, both extruded.
+trimmed polyline and an IfcCenterLineProfileDef, both extruded; in IFC2X3, a bent bar as
+Revit writes reinforcement.
 """
 
 import json
@@ -39,7 +41,7 @@ import numpy as np
 
 
 class Writer:
-    def __init__(self, schema):
+    def __init__(self, schema, mm_degrees=False):
         self.f = f = ifcopenshell.file(schema=schema)
         self.n = 0
         self.origin = self.axis(0, 0, 0)
@@ -47,12 +49,15 @@ class Writer:
         self.body = f.createIfcGeometricRepresentationSubContext(
             "Body", "Model", None, None, None, None, self.ctx, None, "MODEL_VIEW", None
         )
-        units = f.createIfcUnitAssignment(
-            [
-                f.createIfcSIUnit(None, "LENGTHUNIT", None, "METRE"),
-                f.createIfcSIUnit(None, "PLANEANGLEUNIT", None, "RADIAN"),
-            ]
-        )
+        length = f.createIfcSIUnit(None, "LENGTHUNIT", "MILLI" if mm_degrees else None, "METRE")
+        radian = f.createIfcSIUnit(None, "PLANEANGLEUNIT", None, "RADIAN")
+        if mm_degrees:
+            exponents = f.createIfcDimensionalExponents(0, 0, 0, 0, 0, 0, 0)
+            per_degree = f.createIfcMeasureWithUnit(f.createIfcPlaneAngleMeasure(math.pi / 180), radian)
+            angle = f.createIfcConversionBasedUnit(exponents, "PLANEANGLEUNIT", "DEGREE", per_degree)
+        else:
+            angle = radian
+        units = f.createIfcUnitAssignment([length, angle])
         project = f.createIfcProject(self.gid(), None, "Swept solids", None, None, None, None, [self.ctx], units)
         site = f.createIfcSite(self.gid(), None, "Site", None, None, self.place(), None, None, "ELEMENT",
                                None, None, None, None, None)
@@ -193,6 +198,24 @@ def author_ifc4x3(w):
                   rect, None, w.polyline((0, 0, 0), (4, 0, 0), (4, 3, 0), (4, 6, 1)), None, None, w.d(0, 0, 1)))
 
 
+def author_ifc2x3(w):
+    # A bent bar as Revit writes reinforcement in IFC2X3 (millimetres, degrees): a composite
+    # curve of a polyline, a quarter circle trimmed by parameters in degrees and a polyline,
+    # with StartParam 0 and EndParam its length.
+    f = w.f
+    circle = f.createIfcCircle(w.axis(2000, 40300, 200), 300.0)
+    arc = f.createIfcTrimmedCurve(circle, [f.createIfcParameterValue(-90.0)], [f.createIfcParameterValue(0.0)],
+                                  True, "PARAMETER")
+    segs = [
+        f.createIfcCompositeCurveSegment("CONTINUOUS", True, w.polyline((0, 40000, 200), (2000, 40000, 200))),
+        f.createIfcCompositeCurveSegment("CONTINUOUS", True, arc),
+        f.createIfcCompositeCurveSegment("CONTINUOUS", True, w.polyline((2300, 40300, 200), (2300, 42000, 200))),
+    ]
+    length = 2000 + 300 * math.pi / 2 + 1700
+    w.element("IfcReinforcingBar", "disk_ifc2x3_mm_degrees",
+              f.createIfcSweptDiskSolid(f.createIfcCompositeCurve(segs, False), 16.0, None, 0.0, length))
+
+
 def summary(shape):
     verts = np.array(shape.geometry.verts, dtype=float).reshape(-1, 3)
     faces = np.array(shape.geometry.faces, dtype=int).reshape(-1, 3)
@@ -205,8 +228,13 @@ def main(out):
     settings = ifcopenshell.geom.settings()
     settings.set("use-world-coords", True)
     result = {}
-    for schema, name, author in [("IFC4", "swept-ifc4.ifc", author_ifc4), ("IFC4X3_ADD2", "swept-ifc4x3.ifc", author_ifc4x3)]:
-        w = Writer(schema)
+    files = [
+        ("IFC4", "swept-ifc4.ifc", author_ifc4),
+        ("IFC4X3_ADD2", "swept-ifc4x3.ifc", author_ifc4x3),
+        ("IFC2X3", "swept-ifc2x3.ifc", author_ifc2x3),
+    ]
+    for schema, name, author in files:
+        w = Writer(schema, mm_degrees=schema == "IFC2X3")
         author(w)
         path = os.path.join(out, name)
         w.save(path)

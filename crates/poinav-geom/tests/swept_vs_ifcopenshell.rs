@@ -6,15 +6,17 @@
 //! Thickness of centre line profiles, fails on FilletRadius, and parameterises trimmed
 //! polylines by length) the script writes a reference
 //! element with the geometry the schema defines written out, and the case is compared with
-//! that. Also: a swept-disk railing is an obstacle in its storey's floor plan, and a
-//! directrix of an unsupported kind is an error naming its `#id`.
+//! that. Also: a swept-disk railing is an obstacle in its storey's floor plan and has a
+//! footprint, and a directrix of an unsupported kind is an error naming its `#id`.
 
 mod common;
 
 use std::collections::BTreeMap;
 
 use glam::DVec2;
-use poinav_geom::{floor_plans, mesh_model, GeomError, PlanOptions, PlanSource};
+use poinav_geom::{
+    floor_plans, footprint_of, mesh_model, GeomError, PlacementCache, PlanOptions, PlanSource,
+};
 use poinav_ifc::{EntityId, Model};
 
 /// Bounding boxes agree when every coordinate of both corners is this close (metres).
@@ -35,7 +37,7 @@ fn swept_solids_match_ifcopenshell() {
     let reference = reference.as_object().unwrap();
     let mut ours = BTreeMap::new();
     let mut models = BTreeMap::new();
-    for file in ["swept-ifc4.ifc", "swept-ifc4x3.ifc"] {
+    for file in ["swept-ifc4.ifc", "swept-ifc4x3.ifc", "swept-ifc2x3.ifc"] {
         let model = Model::open(dir.path().join(file)).unwrap();
         let meshes = mesh_model(&model);
         assert!(meshes.failures.is_empty(), "{file}: {:?}", meshes.failures);
@@ -87,7 +89,7 @@ fn swept_solids_match_ifcopenshell() {
         }
     }
     assert!(problems.is_empty(), "{}", problems.join("\n"));
-    assert_eq!(compared, 17, "cases compared");
+    assert_eq!(compared, 18, "cases compared");
 
     // The railing (posts at x = 0 and x = 3 up to a handrail 1 m up) is an obstacle in the
     // ground floor's plan: the band 0.05..1.0 m cuts both posts.
@@ -105,6 +107,21 @@ fn swept_solids_match_ifcopenshell() {
             "post at {post} not in the plan"
         );
     }
+    // Its footprint: the hull of its mesh, from the floor to the handrail's top.
+    let model = &models["swept-ifc4.ifc"];
+    let mut cache = PlacementCache::new(model);
+    let f = footprint_of(&mut cache, model.entity(railing.product).unwrap())
+        .unwrap()
+        .footprint;
+    assert!(
+        f.z_min.abs() < 1e-9 && (f.z_max - 1.025).abs() < 0.001,
+        "{f:?}"
+    );
+    let (lo, hi) = poinav_geom::polygon::bounds(&f.polygon);
+    assert!(
+        (lo.x + 0.025).abs() < 0.001 && (hi.x - 3.025).abs() < 0.001,
+        "{lo} {hi}"
+    );
 }
 
 #[test]
