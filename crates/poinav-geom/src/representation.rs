@@ -196,28 +196,16 @@ fn evaluate_item(
             current = first;
         }
         Err(degenerate(&item, "boolean results nested too deeply"))
-    } else if item.is_a("IfcSweptDiskSolid")
-        || is_directrix_swept_area_solid(&item)
-        || is_open_profile_extrusion(&item)
-    {
-        // Swept along a curve (or an open surface): the vertices of the item's mesh.
-        let parts = ItemMesher::new(*units).item(item, depth)?;
-        let points: Vec<DVec3> = parts
-            .iter()
-            .flat_map(|p| p.mesh.positions.iter())
-            .map(|p| t.transform_point3(*p))
-            .collect();
-        if points.is_empty() {
-            return Err(degenerate(&item, "no vertices"));
-        }
-        out.items.push(ItemGeometry {
-            id: item.id(),
-            outline: None,
-            points,
-        });
-        Ok(())
+    } else if item.is_a("IfcSweptDiskSolid") || is_directrix_swept_area_solid(&item) {
+        mesh_vertices(item, t, units, depth, out)
     } else if item.is_a("IfcExtrudedAreaSolid") {
-        let (geometry, concave) = extrusion(item, t, units)?;
+        let (geometry, concave) = match extrusion(item, t, units) {
+            Ok(g) => g,
+            Err(_) if is_open_profile_extrusion(&item) => {
+                return mesh_vertices(item, t, units, depth, out)
+            }
+            Err(e) => return Err(e),
+        };
         if geometry.outline.is_none() && concave {
             out.approximations
                 .push(Approximation::NonVerticalExtrusion { id: item.id() });
@@ -271,6 +259,31 @@ fn evaluate_item(
     } else {
         Err(unsupported(&item, "representation item"))
     }
+}
+
+/// An item swept along a curve (or an open surface) as the world vertices of its mesh.
+fn mesh_vertices(
+    item: Entity<'_>,
+    t: DAffine3,
+    units: &Units,
+    depth: usize,
+    out: &mut RepresentationGeometry,
+) -> Result<(), GeomError> {
+    let parts = ItemMesher::new(*units).item(item, depth)?;
+    let points: Vec<DVec3> = parts
+        .iter()
+        .flat_map(|p| p.mesh.positions.iter())
+        .map(|p| t.transform_point3(*p))
+        .collect();
+    if points.is_empty() {
+        return Err(degenerate(&item, "no vertices"));
+    }
+    out.items.push(ItemGeometry {
+        id: item.id(),
+        outline: None,
+        points,
+    });
+    Ok(())
 }
 
 /// An `IfcExtrudedAreaSolid` in world coordinates, with its exact outline (the projected

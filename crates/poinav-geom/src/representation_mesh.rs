@@ -163,15 +163,19 @@ impl ItemMesher {
                 .get_ref("TreeRootExpression")
                 .ok_or_else(|| missing(&item, "TreeRootExpression"))?;
             self.item(root, depth + 1)
-        } else if is_open_profile_extrusion(&item) {
-            let mesh = extruded_open_profile(item, &self.units)?;
-            self.leaf(&item, mesh, false)
         } else if item.is_a("IfcExtrudedAreaSolid") {
             if item.is_a("IfcExtrudedAreaSolidTapered") {
                 return Err(unsupported(&item, "tapered extrusion"));
             }
-            let mesh = extruded_area_solid(item, &self.units)?;
-            self.leaf(&item, mesh, true)
+            match extruded_area_solid(item, &self.units) {
+                Ok(mesh) => self.leaf(&item, mesh, true),
+                // An open profile bounds no area: extruded, it is a surface (an open part).
+                Err(_) if is_open_profile_extrusion(&item) => {
+                    let mesh = extruded_open_profile(item, &self.units)?;
+                    self.leaf(&item, mesh, false)
+                }
+                Err(e) => Err(e),
+            }
         } else if item.is_a("IfcSweptDiskSolid") {
             let mesh = swept_disk_solid(item, &self.units)?;
             self.leaf(&item, mesh, true)

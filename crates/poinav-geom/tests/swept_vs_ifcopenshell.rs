@@ -122,6 +122,15 @@ fn swept_solids_match_ifcopenshell() {
         (lo.x + 0.025).abs() < 0.001 && (hi.x - 3.025).abs() < 0.001,
         "{lo} {hi}"
     );
+    // And the open profile's (a surface on a trimmed polyline, 2 m high).
+    let open = ours["open_profile"].product;
+    let f = footprint_of(&mut cache, model.entity(open).unwrap())
+        .unwrap()
+        .footprint;
+    assert_eq!((f.z_min, f.z_max), (0.0, 2.0));
+    let (lo, hi) = poinav_geom::polygon::bounds(&f.polygon);
+    assert!(lo.distance(DVec2::new(1.0, 30.0)) < 1e-9, "{lo}");
+    assert!(hi.distance(DVec2::new(2.5, 32.0)) < 1e-9, "{hi}");
 }
 
 #[test]
