@@ -65,7 +65,9 @@ pub fn swept_disk_solid(item: Entity<'_>, units: &Units) -> Result<Mesh, GeomErr
 /// The `Directrix` of a swept solid as a path, trimmed to its `StartParam` and `EndParam`
 /// ([`Path::trimmed`]); an IFC4X3 `IfcLengthMeasure` there is a length along the directrix
 /// from its start. `StartParam` 0 with `EndParam` equal to the directrix's length (in file
-/// units, within 0.5 %) is read as the whole directrix, as exporters write it.
+/// units, within 0.5 %) or to 1 (normalised) is read as the whole directrix, as exporters
+/// write it: IfcOpenShell 0.9 ignores both attributes, and a robot must not lose the rest of
+/// a pipe to a misread parameter.
 pub(crate) fn directrix_path(item: Entity<'_>, units: &Units) -> Result<Path, GeomError> {
     let directrix = required_ref(&item, "Directrix", "IfcCurve")?;
     let path = curve3d::path(directrix, units)?;
@@ -83,7 +85,7 @@ pub(crate) fn directrix_path(item: Entity<'_>, units: &Units) -> Result<Path, Ge
     let (start, end) = (param("StartParam"), param("EndParam"));
     if let (Some(a), Some(b)) = (item.get_f64("StartParam"), item.get_f64("EndParam")) {
         let length = path.length() / s;
-        if a == 0.0 && (b - length).abs() <= 0.005 * length {
+        if a == 0.0 && ((b - length).abs() <= 0.005 * length || b == 1.0) {
             return Ok(path);
         }
     }
@@ -165,7 +167,8 @@ mod tests {
     fn tube_volume_within_one_percent_of_annulus_times_length() {
         let m = model(&format!(
             "{PATH}#10=IFCSWEPTDISKSOLID(#4,100.,80.,$,$);#11=IFCSWEPTDISKSOLID(#4,100.,$,0.,7000.);\
-             #12=IFCSWEPTDISKSOLID(#4,100.,$,0.5,1.5);#13=IFCSWEPTDISKSOLID(#4,100.,100.,$,$);"
+             #12=IFCSWEPTDISKSOLID(#4,100.,$,0.5,1.5);#13=IFCSWEPTDISKSOLID(#4,100.,100.,$,$);\
+             #14=IFCSWEPTDISKSOLID(#4,100.,$,0.,1.);#15=IFCSWEPTDISKSOLID(#4,100.,$,0.,0.75);"
         ));
         let mm = Units {
             metres_per_unit: 0.001,
@@ -189,6 +192,13 @@ mod tests {
             "{lo} {hi}"
         );
         assert!(matches!(mesh(13), Err(GeomError::Degenerate { id, .. }) if id == EntityId(13)));
+        // 0..1 reads as normalised (the whole bar); 0..0.75 is three quarters of the first leg.
+        assert!((mesh(14).unwrap().bounds().unwrap().1.z - 3.0).abs() < 1e-9);
+        let (lo, hi) = mesh(15).unwrap().bounds().unwrap();
+        assert!(
+            (hi.x - 3.0).abs() < 1e-9 && (hi.z - 0.1).abs() < 0.002,
+            "{lo} {hi}"
+        );
     }
 
     #[test]
