@@ -23,7 +23,8 @@ The cases: swept disks along a 3D polyline with posts (a railing), a tube (Inner
 a non-planar polyline, a composite curve of a line, a trimmed circle arc and a reversed
 (SameSense .F.) polyline, an indexed poly curve with an arc, a whole circle (a ring), a circle
 trimmed by points; IfcSweptDiskSolidPolygonal with FilletRadius; StartParam/EndParam trims;
-IfcSurfaceCurveSweptAreaSolid, IfcFixedReferenceSweptAreaSolid (with a Position) and the
+IfcSurfaceCurveSweptAreaSolid (on a plane, a cylinder and a surface of linear extrusion),
+IfcFixedReferenceSweptAreaSolid (with a Position) and the
 IFC4X3 IfcDirectrixDerivedReferenceSweptAreaSolid; an IfcArbitraryOpenProfileDef on a
 trimmed polyline and an IfcCenterLineProfileDef, both extruded; in IFC2X3, a bent bar as
 Revit writes reinforcement.
@@ -161,6 +162,20 @@ def author_ifc4(w):
     ]
     w.element("IfcMember", "surface_swept",
               f.createIfcSurfaceCurveSweptAreaSolid(rect, None, f.createIfcCompositeCurve(segs, False), None, None, plane))
+    # The same rectangle on a cylinder (x axis radial, outwards) and on a curved wall: an arc
+    # extruded up (x axis the arc's direction cross the extrusion's: outwards here too).
+    cylinder = f.createIfcCylindricalSurface(w.axis(25, 0, 0), 2.0)
+    arc = f.createIfcTrimmedCurve(f.createIfcCircle(w.axis(25, 0, 0.5), 2.0), [f.createIfcParameterValue(0.0)],
+                                  [f.createIfcParameterValue(math.pi / 2)], True, "PARAMETER")
+    w.element("IfcMember", "surface_cylinder", f.createIfcSurfaceCurveSweptAreaSolid(rect, None, arc, None, None, cylinder))
+    base = f.createIfcTrimmedCurve(f.createIfcCircle(f.createIfcAxis2Placement2D(w.pt(27, 5), None), 2.0),
+                                   [f.createIfcParameterValue(0.0)], [f.createIfcParameterValue(math.pi / 2)], True,
+                                   "PARAMETER")
+    wall = f.createIfcArbitraryOpenProfileDef("CURVE", None, base)
+    extrusion = f.createIfcSurfaceOfLinearExtrusion(wall, w.axis(0, 0, 0), w.d(0, 0, 1), 3.0)
+    arc = f.createIfcTrimmedCurve(f.createIfcCircle(w.axis(27, 5, 1), 2.0), [f.createIfcParameterValue(0.0)],
+                                  [f.createIfcParameterValue(math.pi / 2)], True, "PARAMETER")
+    w.element("IfcMember", "surface_extrusion", f.createIfcSurfaceCurveSweptAreaSolid(rect, None, arc, None, None, extrusion))
     ishape = f.createIfcIShapeProfileDef("AREA", None, None, 0.2, 0.3, 0.01, 0.015, None, None, None)
     pts = f.createIfcCartesianPointList3D([[0., 0., 0.], [3., 0., 0.], [4., 1., 0.], [3., 2., 0.]])
     ipc = f.createIfcIndexedPolyCurve(pts, [f.createIfcLineIndex([1, 2]), f.createIfcArcIndex([2, 3, 4])], False)

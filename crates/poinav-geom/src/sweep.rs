@@ -20,19 +20,32 @@ use crate::triangulation::triangulate_2d;
 pub const MAX_MITRE_TURN: f64 = 2.0 * std::f64::consts::FRAC_PI_3;
 
 /// How the x axis of each section is chosen (the y axis is the path direction cross x).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum SectionAxes {
+#[derive(Clone, Copy)]
+pub enum SectionAxes<'a> {
     /// Without twist (parallel transport), starting from the IFC default axes for the first
     /// direction; rings spread the twist a non-planar loop gathers evenly over its length.
     RotationMinimising,
     /// Towards this direction projected onto each section's plane (where it is not along
     /// the path; there the previous section's axis is kept).
     Fixed(DVec3),
+    /// Towards the direction the function gives for each segment (from its middle point and
+    /// its direction), projected as for `Fixed`: a reference surface's normal there.
+    Towards(&'a dyn Fn(DVec3, DVec3) -> DVec3),
+}
+
+impl std::fmt::Debug for SectionAxes<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            SectionAxes::RotationMinimising => f.write_str("RotationMinimising"),
+            SectionAxes::Fixed(d) => write!(f, "Fixed({d})"),
+            SectionAxes::Towards(_) => f.write_str("Towards(..)"),
+        }
+    }
 }
 
 /// The closed mesh of `areas` swept along `path` (metres), triangles facing out. `None` when
 /// the path has no length or a cap cannot be triangulated.
-pub fn sweep(areas: &[ProfileArea], path: &[DVec3], axes: SectionAxes) -> Option<Mesh> {
+pub fn sweep(areas: &[ProfileArea], path: &[DVec3], axes: SectionAxes<'_>) -> Option<Mesh> {
     let mut pts: Vec<DVec3> = Vec::with_capacity(path.len());
     for &p in path {
         if !p.is_finite() {
@@ -74,8 +87,14 @@ pub fn sweep(areas: &[ProfileArea], path: &[DVec3], axes: SectionAxes) -> Option
     Some(mesh)
 }
 
-/// The x axis of each segment's section.
-fn section_x(dirs: &[DVec3], axes: SectionAxes, closed: bool, lengths: &[f64]) -> Vec<DVec3> {
+/// The x axis of each segment's section (`pts`: the path, one more than `dirs`).
+fn section_x(
+    pts: &[DVec3],
+    dirs: &[DVec3],
+    axes: SectionAxes<'_>,
+    closed: bool,
+    lengths: &[f64],
+) -> Vec<DVec3> {
     let first = build_axes(dirs[0], None).map_or(DVec3::X, |(x, _, _)| x);
     let mut xs: Vec<DVec3> = Vec::with_capacity(dirs.len());
     for (i, &d) in dirs.iter().enumerate() {
@@ -86,16 +105,18 @@ fn section_x(dirs: &[DVec3], axes: SectionAxes, closed: bool, lengths: &[f64]) -
                 (x - x.dot(d) * d).try_normalize().unwrap_or(first)
             }
         };
-        let x = match axes {
-            SectionAxes::RotationMinimising => transported,
-            SectionAxes::Fixed(f) => (f - f.dot(d) * d)
-                .try_normalize()
-                .filter(|_| f.cross(d).length() > 1e-9)
-                .unwrap_or(transported),
+        let towards = match axes {
+            SectionAxes::RotationMinimising => None,
+            SectionAxes::Fixed(f) => Some(f),
+            SectionAxes::Towards(f) => Some(f((pts[i] + pts[i + 1]) / 2.0, d)),
         };
+        let x = towards
+            .filter(|f| f.cross(d).length() > 1e-9 * f.length())
+            .and_then(|f| (f - f.dot(d) * d).try_normalize())
+            .unwrap_or(transported);
         xs.push(x);
     }
-    if closed && axes == SectionAxes::RotationMinimising {
+    if closed && matches!(axes, SectionAxes::RotationMinimising) {
         // The twist gathered around the ring, spread evenly along it.
         let (d0, last) = (dirs[0], dirs.len() - 1);
         let back = DQuat::from_rotation_arc(dirs[last], d0) * xs[last];
@@ -114,7 +135,7 @@ fn section_x(dirs: &[DVec3], axes: SectionAxes, closed: bool, lengths: &[f64]) -
 fn piece(
     areas: &[ProfileArea],
     pts: &[DVec3],
-    axes: SectionAxes,
+    axes: SectionAxes<'_>,
     closed: bool,
     mesh: &mut Mesh,
 ) -> Option<()> {
@@ -125,7 +146,7 @@ fn piece(
         .windows(2)
         .map(|w| (w[1] - w[0]).try_normalize())
         .collect::<Option<_>>()?;
-    let xs = section_x(&dirs, axes, closed, &lengths);
+    let xs = section_x(pts, &dirs, axes, closed, &lengths);
     // The corners (a ring's last point is its first).
     let corners = if closed { n - 1 } else { n };
     let incoming = |v: usize| match v {
@@ -240,7 +261,13 @@ mod tests {
             .collect();
         let dirs: Vec<DVec3> = pts.windows(2).map(|w| (w[1] - w[0]).normalize()).collect();
         let lengths: Vec<f64> = pts.windows(2).map(|w| w[0].distance(w[1])).collect();
-        let xs = section_x(&dirs, SectionAxes::RotationMinimising, false, &lengths);
+        let xs = section_x(
+            &pts,
+            &dirs,
+            SectionAxes::RotationMinimising,
+            false,
+            &lengths,
+        );
         let angle = |i: usize| {
             let t = step * (i as f64 + 0.5);
             let normal = DVec3::new(-t.cos(), -t.sin(), 0.0);

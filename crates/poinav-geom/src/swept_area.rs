@@ -1,5 +1,6 @@
 //! Profiles swept along a directrix: `IfcSurfaceCurveSweptAreaSolid` (the profile's x axis
-//! along the reference surface's normal; planes only),
+//! along the reference surface's normal: an `IfcPlane`, `IfcCylindricalSurface` or
+//! `IfcSurfaceOfLinearExtrusion`),
 //! `IfcFixedReferenceSweptAreaSolid` (x axis towards the `FixedReference` direction) and its
 //! IFC4X3 subtype `IfcDirectrixDerivedReferenceSweptAreaSolid` (read as its supertype), the
 //! concrete kinds of the abstract IFC4X3 `IfcDirectrixCurveSweptAreaSolid`. The profile comes
@@ -7,7 +8,7 @@
 //! [`crate::swept_disk::directrix_path`], the surface from [`crate::sweep`]; `Position` is
 //! applied last.
 
-use glam::DAffine3;
+use glam::{DAffine3, DVec3};
 use poinav_ifc::Entity;
 
 use crate::axis2_placement::axis2placement_3d;
@@ -30,20 +31,25 @@ pub fn is_directrix_swept_area_solid(item: &Entity<'_>) -> bool {
 /// coordinates (metres).
 pub fn directrix_swept_area_solid(item: Entity<'_>, units: &Units) -> Result<Mesh, GeomError> {
     let s = units.metres_per_unit;
+    let surface = if item.is_a("IfcSurfaceCurveSweptAreaSolid") {
+        Some(ReferenceSurface::read(
+            required_ref(&item, "ReferenceSurface", "IfcSurface")?,
+            units,
+        )?)
+    } else {
+        None
+    };
+    let normal = |p: DVec3, d: DVec3| surface.as_ref().map_or(DVec3::Z, |r| r.normal(p, d));
     let axes = if item.is_a("IfcFixedReferenceSweptAreaSolid") {
         SectionAxes::Fixed(direction(required_ref(
             &item,
             "FixedReference",
             "IfcDirection",
         )?)?)
-    } else if item.is_a("IfcSurfaceCurveSweptAreaSolid") {
-        let surface = required_ref(&item, "ReferenceSurface", "IfcSurface")?;
-        if !surface.is_a("IfcPlane") {
-            return Err(unsupported(&surface, "reference surface of a swept area"));
-        }
-        let position = required_ref(&surface, "Position", "IfcAxis2Placement3D")?;
-        let normal = axis2placement_3d(position, s)?.matrix3.z_axis;
-        SectionAxes::Fixed(normal)
+    } else if let Some(ReferenceSurface::Plane(n)) = surface {
+        SectionAxes::Fixed(n)
+    } else if surface.is_some() {
+        SectionAxes::Towards(&normal)
     } else {
         return Err(unsupported(&item, "kind of swept area solid"));
     };
@@ -68,10 +74,99 @@ pub fn directrix_swept_area_solid(item: Entity<'_>, units: &Units) -> Result<Mes
     Ok(mesh)
 }
 
+/// The reference surface of an `IfcSurfaceCurveSweptAreaSolid`, for its normal.
+#[derive(Debug, Clone, PartialEq)]
+enum ReferenceSurface {
+    /// An `IfcPlane`: its normal.
+    Plane(DVec3),
+    /// An `IfcCylindricalSurface`: a point of its axis and the axis (normals point away).
+    Cylinder { origin: DVec3, axis: DVec3 },
+    /// An `IfcSurfaceOfLinearExtrusion`: its swept curve placed (metres) and the extrusion's
+    /// direction (normals are the curve's direction cross the extrusion's).
+    Extrusion { curve: Vec<DVec3>, along: DVec3 },
+}
+
+impl ReferenceSurface {
+    fn read(surface: Entity<'_>, units: &Units) -> Result<ReferenceSurface, GeomError> {
+        let s = units.metres_per_unit;
+        let position = |e: &Entity<'_>| -> Result<DAffine3, GeomError> {
+            match e.get("Position") {
+                Some(_) => axis2placement_3d(
+                    e.get_ref("Position")
+                        .ok_or_else(|| missing(e, "Position"))?,
+                    s,
+                ),
+                None => Ok(DAffine3::IDENTITY),
+            }
+        };
+        if surface.is_a("IfcPlane") {
+            Ok(ReferenceSurface::Plane(position(&surface)?.matrix3.z_axis))
+        } else if surface.is_a("IfcCylindricalSurface") {
+            let p = position(&surface)?;
+            Ok(ReferenceSurface::Cylinder {
+                origin: p.translation,
+                axis: p.matrix3.z_axis,
+            })
+        } else if surface.is_a("IfcSurfaceOfLinearExtrusion") {
+            let p = position(&surface)?;
+            let profile = required_ref(&surface, "SweptCurve", "IfcProfileDef")?;
+            let curve = profile
+                .get_ref("Curve")
+                .or_else(|| profile.get_ref("OuterCurve"))
+                .ok_or_else(|| missing(&profile, "Curve"))?;
+            let curve = crate::curve::polyline(curve, units)?
+                .into_iter()
+                .map(|q| p.transform_point3(q.extend(0.0)))
+                .collect::<Vec<_>>();
+            let along = p.transform_vector3(direction(required_ref(
+                &surface,
+                "ExtrudedDirection",
+                "IfcDirection",
+            )?)?);
+            if curve.len() < 2 {
+                return Err(degenerate(&surface, "swept curve has no length"));
+            }
+            Ok(ReferenceSurface::Extrusion { curve, along })
+        } else {
+            Err(unsupported(&surface, "reference surface of a swept area"))
+        }
+    }
+
+    /// The surface's normal near `p` (on a path going along `d`).
+    fn normal(&self, p: DVec3, d: DVec3) -> DVec3 {
+        match self {
+            ReferenceSurface::Plane(n) => *n,
+            ReferenceSurface::Cylinder { origin, axis } => {
+                let r = p - *origin;
+                r - r.dot(*axis) * *axis
+            }
+            ReferenceSurface::Extrusion { curve, along } => {
+                // The segment of the curve nearest to p, seen along the extrusion.
+                let flat = |q: DVec3| q - q.dot(*along) * *along;
+                let p = flat(p);
+                let mut best = (f64::INFINITY, d);
+                for w in curve.windows(2) {
+                    let (a, b) = (flat(w[0]), flat(w[1]));
+                    let ab = b - a;
+                    let f = if ab.length_squared() > 0.0 {
+                        ((p - a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0)
+                    } else {
+                        0.0
+                    };
+                    let dist = p.distance(a + ab * f);
+                    if dist < best.0 {
+                        best = (dist, w[1] - w[0]);
+                    }
+                }
+                best.1.cross(*along)
+            }
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
-    use glam::DVec3;
     use poinav_ifc::{EntityId, Model};
 
     #[test]
