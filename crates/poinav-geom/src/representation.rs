@@ -1,7 +1,7 @@
 //! `IfcShapeRepresentation` and its `IfcRepresentationItem`s evaluated to world points in
-//! metres: extrusions (with their exact outline when vertical), swept disks and areas swept
-//! along a directrix and open-profile extrusions (the vertices of their meshes), faceted breps, face sets,
-//! surface models, bounding boxes, boolean results (first operand) and mapped items.
+//! metres: extrusions (with their exact outline when vertical), swept disks, areas swept along
+//! a directrix and open-profile extrusions (the vertices of their meshes), faceted breps, face
+//! sets, surface models, bounding boxes, boolean results (first operand) and mapped items.
 
 use std::collections::HashSet;
 

@@ -1,7 +1,8 @@
 //! The items of an `IfcShapeRepresentation` as triangle meshes in the representation's
-//! coordinates (metres): extrusions (of open profiles too: surfaces), swept disks and areas swept along a directrix, faceted breps, surface models, tessellated face sets,
-//! boxes and CSG primitives, boolean results (clipping by half-spaces, differences, unions
-//! and intersections of solids) and mapped items (nested, with any
+//! coordinates (metres): extrusions (of open profiles too: surfaces), swept disks and areas
+//! swept along a directrix, faceted breps, surface models, tessellated face sets, boxes and
+//! CSG primitives, boolean results (clipping by half-spaces, differences, unions and
+//! intersections of solids) and mapped items (nested, with any
 //! `IfcCartesianTransformationOperator`, mirrored or non-uniformly scaled).
 //!
 //! Work is bounded: at most [`MAX_ITEMS`] items and [`MAX_TRIANGLES`] triangles per

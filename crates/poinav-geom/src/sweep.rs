@@ -2,10 +2,11 @@
 //! meshes: the section at every path point is the profile in a frame whose normal is the
 //! path's direction; frames either do not twist (rotation-minimising, by parallel transport:
 //! each segment's frame is the previous one turned by the least rotation between their
-//! directions) or keep their x axis towards a fixed reference direction. Joints at corners are
-//! mitred (each segment's section projected onto the plane halving the corner; where the two
-//! differ, a strip in that plane joins them), so the surface stays closed; a turn sharper than [`MAX_MITRE_TURN`] ends one piece and starts the next; open
-//! paths get caps triangulated as extrusion caps are, closed paths (rings) none.
+//! directions) or keep their x axis towards a reference direction (fixed, or given per
+//! segment). Joints at corners are mitred (each segment's section projected onto the plane
+//! halving the corner; where the two differ, a strip in that plane joins them), so the
+//! surface stays closed; a turn sharper than [`MAX_MITRE_TURN`] ends one piece and starts the
+//! next. Open paths get caps triangulated as extrusion caps are, closed paths (rings) none.
 
 use glam::{DQuat, DVec2, DVec3};
 
