@@ -5,10 +5,9 @@
 
 use std::f64::consts::TAU;
 
-use glam::{DAffine2, DVec2, DVec3};
+use glam::{DVec2, DVec3};
 use poinav_ifc::{Entity, Value};
 
-use crate::axis2_placement::axis2placement;
 use crate::cartesian_point::{point2, point3, point_list};
 use crate::error::{degenerate, missing, required_ref, unsupported, GeomError};
 use crate::unit_assignment::Units;
@@ -19,6 +18,11 @@ pub const MAX_ARC_STEP: f64 = TAU / 72.0;
 
 /// Deepest nesting of composite curves followed.
 const MAX_DEPTH: usize = 16;
+
+/// The points of a 3D path in the plane z = 0 (z dropped).
+fn flat(path: &crate::curve3d::Path) -> Vec<DVec2> {
+    path.points.iter().map(|p| p.truncate()).collect()
+}
 
 /// The points of a curve, in order, in metres, in the curve's own 2D coordinates (z dropped).
 /// Consecutive duplicate points are removed; a closed curve repeats its first point at the end.
@@ -71,8 +75,7 @@ fn points(curve: Entity<'_>, units: &Units, depth: usize) -> Result<Vec<DVec2>, 
     } else if curve.is_a("IfcTrimmedCurve") {
         trimmed_curve(curve, units)
     } else if curve.is_a("IfcCircle") || curve.is_a("IfcEllipse") {
-        let conic = Conic::read(curve, units)?;
-        Ok(conic.arc(0.0, TAU))
+        Ok(flat(&crate::curve3d::path(curve, units)?))
     } else {
         Err(unsupported(&curve, "curve"))
     }
@@ -159,62 +162,6 @@ pub(crate) fn sample_arc(centre: DVec2, radius: f64, t0: f64, sweep: f64) -> Vec
         .collect()
 }
 
-/// A circle or ellipse: its placement (metres) and semi-axes (metres).
-struct Conic {
-    placement: DAffine2,
-    a: f64,
-    b: f64,
-}
-
-impl Conic {
-    fn read(e: Entity<'_>, units: &Units) -> Result<Conic, GeomError> {
-        let s = units.metres_per_unit;
-        let position = e
-            .get_ref("Position")
-            .ok_or_else(|| missing(&e, "Position"))?;
-        let p3 = axis2placement(position, s)?;
-        let placement = DAffine2::from_cols(
-            p3.matrix3.x_axis.truncate(),
-            p3.matrix3.y_axis.truncate(),
-            p3.translation.truncate(),
-        );
-        let (a, b) = if e.is_a("IfcCircle") {
-            let r = e.get_f64("Radius").ok_or_else(|| missing(&e, "Radius"))? * s;
-            (r, r)
-        } else {
-            (
-                e.get_f64("SemiAxis1")
-                    .ok_or_else(|| missing(&e, "SemiAxis1"))?
-                    * s,
-                e.get_f64("SemiAxis2")
-                    .ok_or_else(|| missing(&e, "SemiAxis2"))?
-                    * s,
-            )
-        };
-        if !(a > 0.0 && b > 0.0 && a.is_finite() && b.is_finite()) {
-            return Err(degenerate(&e, "radius is not a positive number"));
-        }
-        Ok(Conic { placement, a, b })
-    }
-
-    /// Points from parameter `t0` over `sweep` radians (signed).
-    fn arc(&self, t0: f64, sweep: f64) -> Vec<DVec2> {
-        sample_arc(DVec2::ZERO, 1.0, t0, sweep)
-            .into_iter()
-            .map(|u| {
-                self.placement
-                    .transform_point2(DVec2::new(u.x * self.a, u.y * self.b))
-            })
-            .collect()
-    }
-
-    /// The parameter (radians) of a point on or near the conic.
-    fn parameter_of(&self, p: DVec2) -> f64 {
-        let l = self.placement.inverse().transform_point2(p);
-        (l.y / self.b).atan2(l.x / self.a)
-    }
-}
-
 /// One end of a trimmed curve: a point (metres), a parameter (file units), or both.
 #[derive(Default)]
 pub(crate) struct Trim {
@@ -257,32 +204,9 @@ fn trimmed_curve(curve: Entity<'_>, units: &Units) -> Result<Vec<DVec2>, GeomErr
     let sense = curve.get("SenseAgreement").and_then(|v| v.as_enum()) != Some("F");
     let prefer_point =
         curve.get("MasterRepresentation").and_then(|v| v.as_enum()) == Some("CARTESIAN");
-    if basis.is_a("IfcCircle") || basis.is_a("IfcEllipse") {
-        let conic = Conic::read(basis, units)?;
-        let param = |t: &Trim| -> f64 {
-            match (t.point, t.parameter) {
-                (Some(p), Some(_)) if prefer_point => conic.parameter_of(p.truncate()),
-                (_, Some(u)) => u * units.radians_per_unit,
-                (Some(p), None) => conic.parameter_of(p.truncate()),
-                (None, None) => 0.0,
-            }
-        };
-        let (a, b) = (param(&t1), param(&t2));
-        let sweep = if sense {
-            (b - a).rem_euclid(TAU)
-        } else {
-            -(a - b).rem_euclid(TAU)
-        };
-        let sweep = if sweep == 0.0 {
-            if sense {
-                TAU
-            } else {
-                -TAU
-            }
-        } else {
-            sweep
-        };
-        Ok(conic.arc(a, sweep))
+    if basis.is_a("IfcCircle") || basis.is_a("IfcEllipse") || basis.is_a("IfcPolyline") {
+        // Conics by angle, polylines by point index plus fraction.
+        Ok(flat(&crate::curve3d::path(curve, units)?))
     } else if basis.is_a("IfcLine") {
         let origin = point2(required_ref(&basis, "Pnt", "IfcCartesianPoint")?)? * s;
         let vector = required_ref(&basis, "Dir", "IfcVector")?;
@@ -298,10 +222,6 @@ fn trimmed_curve(curve: Entity<'_>, units: &Units) -> Result<Vec<DVec2>, GeomErr
         };
         let (a, b) = (at(&t1), at(&t2));
         Ok(if sense { vec![a, b] } else { vec![b, a] })
-    } else if basis.is_a("IfcPolyline") {
-        // Parameters of a polyline: point index (from 0) plus the fraction of the segment.
-        let path = crate::curve3d::path(curve, units)?;
-        Ok(path.points.iter().map(|p| p.truncate()).collect())
     } else {
         Err(unsupported(&basis, "basis curve of a trimmed curve"))
     }

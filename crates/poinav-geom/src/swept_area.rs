@@ -8,10 +8,10 @@
 //! [`crate::swept_disk::directrix_path`], the surface from [`crate::sweep`]; `Position` is
 //! applied last.
 
-use glam::{DAffine3, DVec3};
+use glam::DVec3;
 use poinav_ifc::Entity;
 
-use crate::axis2_placement::axis2placement_3d;
+use crate::axis2_placement::optional_position;
 use crate::direction::direction;
 use crate::error::{degenerate, missing, required_ref, unsupported, GeomError};
 use crate::mesh::Mesh;
@@ -62,15 +62,7 @@ pub fn directrix_swept_area_solid(item: Entity<'_>, units: &Units) -> Result<Mes
             "the profile cannot be triangulated or the directrix has no length",
         )
     })?;
-    let position = match item.get("Position") {
-        Some(_) => axis2placement_3d(
-            item.get_ref("Position")
-                .ok_or_else(|| missing(&item, "Position"))?,
-            s,
-        )?,
-        None => DAffine3::IDENTITY,
-    };
-    mesh.transform(&position);
+    mesh.transform(&optional_position(&item, s)?);
     Ok(mesh)
 }
 
@@ -89,16 +81,7 @@ enum ReferenceSurface {
 impl ReferenceSurface {
     fn read(surface: Entity<'_>, units: &Units) -> Result<ReferenceSurface, GeomError> {
         let s = units.metres_per_unit;
-        let position = |e: &Entity<'_>| -> Result<DAffine3, GeomError> {
-            match e.get("Position") {
-                Some(_) => axis2placement_3d(
-                    e.get_ref("Position")
-                        .ok_or_else(|| missing(e, "Position"))?,
-                    s,
-                ),
-                None => Ok(DAffine3::IDENTITY),
-            }
-        };
+        let position = |e: &Entity<'_>| optional_position(e, s);
         if surface.is_a("IfcPlane") {
             Ok(ReferenceSurface::Plane(position(&surface)?.matrix3.z_axis))
         } else if surface.is_a("IfcCylindricalSurface") {
