@@ -1,14 +1,15 @@
 //! `IfcCurve` as a 2D polyline in metres: `IfcPolyline`, `IfcIndexedPolyCurve` (line and arc
-//! segments), `IfcCompositeCurve`, `IfcTrimmedCurve` of a circle, ellipse, line or polyline
-//! (the polyline trimmed by [`crate::curve3d`]), and whole
-//! `IfcCircle` / `IfcEllipse`. Arcs are approximated by chords (see [`MAX_ARC_STEP`]).
+//! segments), `IfcCompositeCurve`, `IfcTrimmedCurve` of a circle, ellipse, line or polyline,
+//! and whole `IfcCircle` / `IfcEllipse` (indexed poly curves, conics and trimmed polylines
+//! read by [`crate::curve3d`], z dropped). Arcs are approximated by chords (see
+//! [`MAX_ARC_STEP`]).
 
 use std::f64::consts::TAU;
 
 use glam::{DVec2, DVec3};
 use poinav_ifc::{Entity, Value};
 
-use crate::cartesian_point::{point2, point3, point_list};
+use crate::cartesian_point::{point2, point3};
 use crate::error::{degenerate, missing, required_ref, unsupported, GeomError};
 use crate::unit_assignment::Units;
 
@@ -56,7 +57,7 @@ fn points(curve: Entity<'_>, units: &Units, depth: usize) -> Result<Vec<DVec2>, 
         }
         pts.into_iter().map(|p| point2(p).map(|p| p * s)).collect()
     } else if curve.is_a("IfcIndexedPolyCurve") {
-        indexed_poly_curve(curve, s)
+        Ok(flat(&crate::curve3d::path(curve, units)?))
     } else if curve.is_a("IfcCompositeCurve") {
         let segments = curve.get_refs("Segments");
         if segments.is_empty() {
@@ -79,48 +80,6 @@ fn points(curve: Entity<'_>, units: &Units, depth: usize) -> Result<Vec<DVec2>, 
     } else {
         Err(unsupported(&curve, "curve"))
     }
-}
-
-/// `IfcIndexedPolyCurve`: points from a point list, joined by `IfcLineIndex` and `IfcArcIndex`
-/// segments (all points in order when `Segments` is `$`).
-fn indexed_poly_curve(curve: Entity<'_>, s: f64) -> Result<Vec<DVec2>, GeomError> {
-    let list = required_ref(&curve, "Points", "IfcCartesianPointList")?;
-    let pts: Vec<DVec2> = point_list(list)?
-        .into_iter()
-        .map(|p| p.truncate() * s)
-        .collect();
-    let Some(segments) = curve.get("Segments") else {
-        return Ok(pts);
-    };
-    let segments = segments
-        .as_list()
-        .ok_or_else(|| missing(&curve, "Segments"))?;
-    let at = |i: &Value<'_>| -> Result<DVec2, GeomError> {
-        i.as_i64()
-            .and_then(|i| usize::try_from(i).ok())
-            .and_then(|i| i.checked_sub(1))
-            .and_then(|i| pts.get(i).copied())
-            .ok_or_else(|| degenerate(&curve, "segment index outside the point list"))
-    };
-    let mut out = Vec::new();
-    for seg in segments {
-        let Value::Typed(kind, inner) = seg else {
-            return Err(missing(&curve, "Segments"));
-        };
-        let idx = inner.as_list().ok_or_else(|| missing(&curve, "Segments"))?;
-        let seg_pts: Vec<DVec2> = idx.iter().map(at).collect::<Result<_, _>>()?;
-        if kind.eq_ignore_ascii_case("IFCARCINDEX") {
-            let [a, b, c] = seg_pts[..] else {
-                return Err(degenerate(&curve, "an arc segment needs three indices"));
-            };
-            append(&mut out, &arc_through(a, b, c));
-        } else if kind.eq_ignore_ascii_case("IFCLINEINDEX") {
-            append(&mut out, &seg_pts);
-        } else {
-            return Err(unsupported(&curve, "indexed poly curve segment kind"));
-        }
-    }
-    Ok(out)
 }
 
 /// The arc from `a` through `b` to `c`, approximated by chords; a straight line when the
