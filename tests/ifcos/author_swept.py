@@ -125,7 +125,8 @@ def author_ifc4(w):
     w.element("IfcPipeSegment", "disk_composite", disk(f.createIfcCompositeCurve(segs, False), 0.05, None, None, None))
     # Indexed poly curve: a line, a tangent quarter arc about (2, 6), a line.
     h = math.sqrt(0.5)
-    pts = f.createIfcCartesianPointList3D([[0., 5., .2], [2., 5., .2], [2. + h, 6. - h, .2], [3., 6., .2], [3., 8., .2]])
+    pts = f.createIfcCartesianPointList3D(
+        [[0., 5., .2], [2., 5., .2], [2. + h, 6. - h, .2], [3., 6., .2], [3., 8., .2]])
     ipc = f.createIfcIndexedPolyCurve(pts, [f.createIfcLineIndex([1, 2]), f.createIfcArcIndex([2, 3, 4]),
                                             f.createIfcLineIndex([4, 5])], False)
     w.element("IfcReinforcingBar", "disk_indexed", disk(ipc, 0.02, None, None, None))
@@ -135,7 +136,8 @@ def author_ifc4(w):
     w.element("IfcReinforcingBar", "disk_polygonal",
               f.createIfcSweptDiskSolidPolygonal(poly, 0.02, None, None, None, 0.3))
     c = (2.7 + 0.3 * h, 10.3 - 0.3 * h)
-    pts = f.createIfcCartesianPointList3D([[0., 10., .2], [2.7, 10., .2], [c[0], c[1], .2], [3., 10.3, .2], [3., 13., .2]])
+    pts = f.createIfcCartesianPointList3D(
+        [[0., 10., .2], [2.7, 10., .2], [c[0], c[1], .2], [3., 10.3, .2], [3., 13., .2]])
     ipc = f.createIfcIndexedPolyCurve(pts, [f.createIfcLineIndex([1, 2]), f.createIfcArcIndex([2, 3, 4]),
                                             f.createIfcLineIndex([4, 5])], False)
     w.element("IfcReinforcingBar", "disk_polygonal_reference", disk(ipc, 0.02, None, None, None))
@@ -161,13 +163,15 @@ def author_ifc4(w):
         f.createIfcCompositeCurveSegment("CONTINUOUS", True, arc),
     ]
     w.element("IfcMember", "surface_swept",
-              f.createIfcSurfaceCurveSweptAreaSolid(rect, None, f.createIfcCompositeCurve(segs, False), None, None, plane))
+              f.createIfcSurfaceCurveSweptAreaSolid(rect, None, f.createIfcCompositeCurve(segs, False), None, None,
+                                                    plane))
     # The same rectangle on a cylinder (x axis radial, outwards) and on a curved wall: an arc
     # extruded up (x axis the arc's direction cross the extrusion's: outwards here too).
     cylinder = f.createIfcCylindricalSurface(w.axis(25, 0, 0), 2.0)
     arc = f.createIfcTrimmedCurve(f.createIfcCircle(w.axis(25, 0, 0.5), 2.0), [f.createIfcParameterValue(0.0)],
                                   [f.createIfcParameterValue(math.pi / 2)], True, "PARAMETER")
-    w.element("IfcMember", "surface_cylinder", f.createIfcSurfaceCurveSweptAreaSolid(rect, None, arc, None, None, cylinder))
+    w.element("IfcMember", "surface_cylinder",
+              f.createIfcSurfaceCurveSweptAreaSolid(rect, None, arc, None, None, cylinder))
     base = f.createIfcTrimmedCurve(f.createIfcCircle(f.createIfcAxis2Placement2D(w.pt(27, 5), None), 2.0),
                                    [f.createIfcParameterValue(0.0)], [f.createIfcParameterValue(math.pi / 2)], True,
                                    "PARAMETER")
@@ -175,7 +179,8 @@ def author_ifc4(w):
     extrusion = f.createIfcSurfaceOfLinearExtrusion(wall, w.axis(0, 0, 0), w.d(0, 0, 1), 3.0)
     arc = f.createIfcTrimmedCurve(f.createIfcCircle(w.axis(27, 5, 1), 2.0), [f.createIfcParameterValue(0.0)],
                                   [f.createIfcParameterValue(math.pi / 2)], True, "PARAMETER")
-    w.element("IfcMember", "surface_extrusion", f.createIfcSurfaceCurveSweptAreaSolid(rect, None, arc, None, None, extrusion))
+    w.element("IfcMember", "surface_extrusion",
+              f.createIfcSurfaceCurveSweptAreaSolid(rect, None, arc, None, None, extrusion))
     ishape = f.createIfcIShapeProfileDef("AREA", None, None, 0.2, 0.3, 0.01, 0.015, None, None, None)
     pts = f.createIfcCartesianPointList3D([[0., 0., 0.], [3., 0., 0.], [4., 1., 0.], [3., 2., 0.]])
     ipc = f.createIfcIndexedPolyCurve(pts, [f.createIfcLineIndex([1, 2]), f.createIfcArcIndex([2, 3, 4])], False)
