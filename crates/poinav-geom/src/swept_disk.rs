@@ -68,7 +68,7 @@ pub fn swept_disk_solid(item: Entity<'_>, units: &Units) -> Result<Mesh, GeomErr
 /// units, within 0.5 %) or to 1 (normalised) is read as the whole directrix, as exporters
 /// write it: IfcOpenShell 0.9 ignores both attributes, and a robot must not lose the rest of
 /// a pipe to a misread parameter.
-pub(crate) fn directrix_path(item: Entity<'_>, units: &Units) -> Result<Path, GeomError> {
+pub fn directrix_path(item: Entity<'_>, units: &Units) -> Result<Path, GeomError> {
     let directrix = required_ref(&item, "Directrix", "IfcCurve")?;
     let path = curve3d::path(directrix, units)?;
     let s = units.metres_per_unit;
