@@ -9,7 +9,7 @@ use poinav_ifc::Entity;
 
 use crate::cartesian_point::point3;
 use crate::direction::{optional_direction, MIN_LENGTH};
-use crate::error::{degenerate, required_ref, unsupported, GeomError};
+use crate::error::{degenerate, missing, required_ref, unsupported, GeomError};
 
 /// The orthonormal right-handed axes (x, y, z) for a z axis and a wished-for x direction.
 pub(crate) fn build_axes(z: DVec3, ref_direction: Option<DVec3>) -> Option<(DVec3, DVec3, DVec3)> {
@@ -48,6 +48,19 @@ pub fn axis2placement_3d(e: Entity<'_>, scale: f64) -> Result<DAffine3, GeomErro
         DMat3::from_cols(x, y, z),
         location * scale,
     ))
+}
+
+/// The `IfcAxis2Placement3D` in attribute `Position` of `e` as [`axis2placement_3d`] maps it;
+/// the identity when it is `$`.
+pub(crate) fn optional_position(e: &Entity<'_>, scale: f64) -> Result<DAffine3, GeomError> {
+    match e.get("Position") {
+        None => Ok(DAffine3::IDENTITY),
+        Some(_) => axis2placement_3d(
+            e.get_ref("Position")
+                .ok_or_else(|| missing(e, "Position"))?,
+            scale,
+        ),
+    }
 }
 
 /// An `IfcAxis2Placement2D` as a 2D map, translation multiplied by `scale`.

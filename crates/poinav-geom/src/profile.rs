@@ -4,7 +4,8 @@
 //! Supported: every parameterized profile of [`crate::parameterized_profile`] (rectangles,
 //! rounded and hollow rectangles, circles and hollow circles, ellipses, trapezia, I, L, T, U,
 //! C and Z shapes), `IfcArbitraryClosedProfileDef` and `...WithVoids` bounded by any curve
-//! [`crate::curve`] reads, `IfcDerivedProfileDef` (a parent profile moved, mirrored or
+//! [`crate::curve`] reads, `IfcCenterLineProfileDef` ([`crate::open_profile`]),
+//! `IfcDerivedProfileDef` (a parent profile moved, mirrored or
 //! scaled) and `IfcCompositeProfileDef` (several areas). Anything else is
 //! [`GeomError::Unsupported`] naming the profile.
 
@@ -15,6 +16,7 @@ use crate::axis2_placement::axis2placement_2d;
 use crate::cartesian_transformation_operator::transformation;
 use crate::curve;
 use crate::error::{degenerate, missing, required_ref, unsupported, GeomError};
+use crate::open_profile;
 use crate::parameterized_profile;
 use crate::polygon;
 use crate::unit_assignment::Units;
@@ -122,6 +124,9 @@ fn areas_at(
             }
         }
         (outer, holes)
+    } else if profile.is_a("IfcCenterLineProfileDef") {
+        let area = open_profile::center_line_area(profile, units)?;
+        (area.outer, area.holes)
     } else {
         return Err(unsupported(&profile, "profile"));
     };
@@ -240,7 +245,7 @@ mod tests {
         let m = model(
             "#1=IFCCIRCLEPROFILEDEF(.AREA.,$,$,0.5);#4=IFCPOLYLINE((#5,#6));\
              #5=IFCCARTESIANPOINT((0.,0.));#6=IFCCARTESIANPOINT((1.,0.));\
-             #2=IFCCENTERLINEPROFILEDEF(.AREA.,$,#4,0.1);\
+             #2=IFCARBITRARYOPENPROFILEDEF(.CURVE.,$,#4);\
              #3=IFCRECTANGLEPROFILEDEF(.AREA.,$,$,0.,1.);",
         );
         let c = outline_of(&m, 1, &Units::SI).unwrap();
@@ -248,7 +253,10 @@ mod tests {
         assert!((polygon::signed_area(&c) - std::f64::consts::PI * 0.25).abs() < 0.002);
         let err = outline_of(&m, 2, &Units::SI).unwrap_err();
         assert_eq!(err.id(), EntityId(2));
-        assert!(err.to_string().contains("IfcCenterLineProfileDef"), "{err}");
+        assert!(
+            err.to_string().contains("IfcArbitraryOpenProfileDef"),
+            "{err}"
+        );
         assert!(matches!(
             outline_of(&m, 3, &Units::SI),
             Err(GeomError::Degenerate { .. })

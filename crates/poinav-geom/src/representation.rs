@@ -1,6 +1,7 @@
 //! `IfcShapeRepresentation` and its `IfcRepresentationItem`s evaluated to world points in
-//! metres: extrusions (with their exact outline when vertical), faceted breps, face sets,
-//! surface models, bounding boxes, boolean results (first operand) and mapped items.
+//! metres: extrusions (with their exact outline when vertical), swept disks, areas swept along
+//! a directrix and open-profile extrusions (the vertices of their meshes), faceted breps, face
+//! sets, surface models, bounding boxes, boolean results (first operand) and mapped items.
 
 use std::collections::HashSet;
 
@@ -11,8 +12,11 @@ use crate::axis2_placement::axis2placement;
 use crate::cartesian_point::{point3, point_list};
 use crate::cartesian_transformation_operator::transformation;
 use crate::error::{degenerate, missing, required_ref, unsupported, GeomError};
+use crate::open_profile::is_open_profile_extrusion;
 use crate::polygon;
 use crate::profile;
+use crate::representation_mesh::ItemMesher;
+use crate::swept_area::is_directrix_swept_area_solid;
 use crate::unit_assignment::Units;
 
 /// Deepest nesting of mapped items followed.
@@ -192,8 +196,16 @@ fn evaluate_item(
             current = first;
         }
         Err(degenerate(&item, "boolean results nested too deeply"))
+    } else if item.is_a("IfcSweptDiskSolid") || is_directrix_swept_area_solid(&item) {
+        mesh_vertices(item, t, units, depth, out)
     } else if item.is_a("IfcExtrudedAreaSolid") {
-        let (geometry, concave) = extrusion(item, t, units)?;
+        let (geometry, concave) = match extrusion(item, t, units) {
+            Ok(g) => g,
+            Err(_) if is_open_profile_extrusion(&item) => {
+                return mesh_vertices(item, t, units, depth, out)
+            }
+            Err(e) => return Err(e),
+        };
         if geometry.outline.is_none() && concave {
             out.approximations
                 .push(Approximation::NonVerticalExtrusion { id: item.id() });
@@ -247,6 +259,31 @@ fn evaluate_item(
     } else {
         Err(unsupported(&item, "representation item"))
     }
+}
+
+/// An item swept along a curve (or an open surface) as the world vertices of its mesh.
+fn mesh_vertices(
+    item: Entity<'_>,
+    t: DAffine3,
+    units: &Units,
+    depth: usize,
+    out: &mut RepresentationGeometry,
+) -> Result<(), GeomError> {
+    let parts = ItemMesher::new(*units).item(item, depth)?;
+    let points: Vec<DVec3> = parts
+        .iter()
+        .flat_map(|p| p.mesh.positions.iter())
+        .map(|p| t.transform_point3(*p))
+        .collect();
+    if points.is_empty() {
+        return Err(degenerate(&item, "no vertices"));
+    }
+    out.items.push(ItemGeometry {
+        id: item.id(),
+        outline: None,
+        points,
+    });
+    Ok(())
 }
 
 /// An `IfcExtrudedAreaSolid` in world coordinates, with its exact outline (the projected

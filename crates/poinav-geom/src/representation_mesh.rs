@@ -1,7 +1,8 @@
 //! The items of an `IfcShapeRepresentation` as triangle meshes in the representation's
-//! coordinates (metres): extrusions, faceted breps, surface models, tessellated face sets,
-//! boxes and CSG primitives, boolean results (clipping by half-spaces, differences, unions
-//! and intersections of solids) and mapped items (nested, with any
+//! coordinates (metres): extrusions (of open profiles too: surfaces), swept disks and areas
+//! swept along a directrix, faceted breps, surface models, tessellated face sets, boxes and
+//! CSG primitives, boolean results (clipping by half-spaces, differences, unions and
+//! intersections of solids) and mapped items (nested, with any
 //! `IfcCartesianTransformationOperator`, mirrored or non-uniformly scaled).
 //!
 //! Work is bounded: at most [`MAX_ITEMS`] items and [`MAX_TRIANGLES`] triangles per
@@ -23,9 +24,12 @@ use crate::extrusion::{extrude, extruded_area_solid};
 use crate::face_set::face_set_mesh;
 use crate::half_space::half_space;
 use crate::mesh::Mesh;
+use crate::open_profile::{extruded_open_profile, is_open_profile_extrusion};
 use crate::parameterized_profile::ellipse;
 use crate::profile::ProfileArea;
 use crate::surface_style::item_colour;
+use crate::swept_area::{directrix_swept_area_solid, is_directrix_swept_area_solid};
+use crate::swept_disk::swept_disk_solid;
 use crate::unit_assignment::Units;
 
 /// Deepest nesting of mapped items, CSG trees and boolean operands followed.
@@ -164,7 +168,20 @@ impl ItemMesher {
             if item.is_a("IfcExtrudedAreaSolidTapered") {
                 return Err(unsupported(&item, "tapered extrusion"));
             }
-            let mesh = extruded_area_solid(item, &self.units)?;
+            match extruded_area_solid(item, &self.units) {
+                Ok(mesh) => self.leaf(&item, mesh, true),
+                // An open profile bounds no area: extruded, it is a surface (an open part).
+                Err(_) if is_open_profile_extrusion(&item) => {
+                    let mesh = extruded_open_profile(item, &self.units)?;
+                    self.leaf(&item, mesh, false)
+                }
+                Err(e) => Err(e),
+            }
+        } else if item.is_a("IfcSweptDiskSolid") {
+            let mesh = swept_disk_solid(item, &self.units)?;
+            self.leaf(&item, mesh, true)
+        } else if is_directrix_swept_area_solid(&item) {
+            let mesh = directrix_swept_area_solid(item, &self.units)?;
             self.leaf(&item, mesh, true)
         } else if item.is_a("IfcManifoldSolidBrep")
             || item.is_a("IfcFaceBasedSurfaceModel")
