@@ -1,6 +1,7 @@
 //! `IfcCurve` as a 2D polyline in metres: `IfcPolyline`, `IfcIndexedPolyCurve` (line and arc
 //! segments), `IfcCompositeCurve`, `IfcTrimmedCurve` of a circle, ellipse or line, and whole
-//! `IfcCircle` / `IfcEllipse`. Arcs are approximated by chords (see [`MAX_ARC_STEP`]).
+//! `IfcCircle` / `IfcEllipse`, B-spline curves ([`crate::bspline`]). Arcs are approximated by
+//! chords (see [`MAX_ARC_STEP`]).
 
 use std::f64::consts::TAU;
 
@@ -72,6 +73,9 @@ fn points(curve: Entity<'_>, units: &Units, depth: usize) -> Result<Vec<DVec2>, 
     } else if curve.is_a("IfcCircle") || curve.is_a("IfcEllipse") {
         let conic = Conic::read(curve, units)?;
         Ok(conic.arc(0.0, TAU))
+    } else if curve.is_a("IfcBSplineCurveWithKnots") {
+        let c = crate::bspline::curve(curve, s)?;
+        Ok(c.sample().into_iter().map(|p| p.truncate()).collect())
     } else {
         Err(unsupported(&curve, "curve"))
     }

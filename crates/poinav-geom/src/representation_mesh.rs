@@ -1,6 +1,6 @@
 //! The items of an `IfcShapeRepresentation` as triangle meshes in the representation's
-//! coordinates (metres): extrusions, faceted breps, surface models, tessellated face sets,
-//! boxes and CSG primitives, boolean results (clipping by half-spaces, differences, unions
+//! coordinates (metres): extrusions (tapered too), revolutions, faceted and advanced breps,
+//! surface models, tessellated face sets, boxes and CSG primitives, boolean results (clipping by half-spaces, differences, unions
 //! and intersections of solids) and mapped items (nested, with any
 //! `IfcCartesianTransformationOperator`, mirrored or non-uniformly scaled).
 //!
@@ -13,11 +13,13 @@ use std::time::Instant;
 use glam::{DAffine3, DVec2, DVec3};
 use poinav_ifc::Entity;
 
+use crate::advanced_brep::advanced_brep;
 use crate::axis2_placement::{axis2placement, axis2placement_3d};
 use crate::boolean::{boxes_overlap, clip, Solid};
 use crate::brep::face_mesh;
 use crate::cartesian_point::point3;
 use crate::cartesian_transformation_operator::transformation;
+use crate::csg_primitive::csg_primitive;
 use crate::error::{degenerate, missing, required_ref, unsupported, GeomError};
 use crate::extrusion::{extrude, extruded_area_solid};
 use crate::face_set::face_set_mesh;
@@ -25,7 +27,9 @@ use crate::half_space::half_space;
 use crate::mesh::Mesh;
 use crate::parameterized_profile::ellipse;
 use crate::profile::ProfileArea;
+use crate::revolve::revolved_area_solid;
 use crate::surface_style::item_colour;
+use crate::tapered_extrusion::tapered_extrusion;
 use crate::unit_assignment::Units;
 
 /// Deepest nesting of mapped items, CSG trees and boolean operands followed.
@@ -161,10 +165,17 @@ impl ItemMesher {
                 .ok_or_else(|| missing(&item, "TreeRootExpression"))?;
             self.item(root, depth + 1)
         } else if item.is_a("IfcExtrudedAreaSolid") {
-            if item.is_a("IfcExtrudedAreaSolidTapered") {
-                return Err(unsupported(&item, "tapered extrusion"));
-            }
-            let mesh = extruded_area_solid(item, &self.units)?;
+            let mesh = if item.is_a("IfcExtrudedAreaSolidTapered") {
+                tapered_extrusion(item, &self.units)?
+            } else {
+                extruded_area_solid(item, &self.units)?
+            };
+            self.leaf(&item, mesh, true)
+        } else if item.is_a("IfcRevolvedAreaSolid") {
+            let mesh = revolved_area_solid(item, &self.units)?;
+            self.leaf(&item, mesh, true)
+        } else if item.is_a("IfcAdvancedBrep") {
+            let mesh = advanced_brep(item, s)?;
             self.leaf(&item, mesh, true)
         } else if item.is_a("IfcManifoldSolidBrep")
             || item.is_a("IfcFaceBasedSurfaceModel")
@@ -193,6 +204,13 @@ impl ItemMesher {
             };
             let mut mesh = extrude(&[area], DVec3::Z * h)
                 .ok_or_else(|| degenerate(&item, "cylinder cannot be meshed"))?;
+            mesh.transform(&self.position(&item)?);
+            self.leaf(&item, mesh, true)
+        } else if item.is_a("IfcSphere")
+            || item.is_a("IfcRightCircularCone")
+            || item.is_a("IfcRectangularPyramid")
+        {
+            let mut mesh = csg_primitive(item, s)?;
             mesh.transform(&self.position(&item)?);
             self.leaf(&item, mesh, true)
         } else if item.is_a("IfcCurve")

@@ -1,0 +1,257 @@
+//! The surfaces of advanced faces as maps from parameters (u, v) to points in metres, with
+//! the inverse for points on them: `IfcPlane`, `IfcCylindricalSurface` (u the angle about
+//! the axis, v the height), `IfcSphericalSurface` (longitude, latitude),
+//! `IfcToroidalSurface` (angle about the axis, angle about the tube) and B-spline surfaces
+//! (rational too, [`crate::bspline`]). Angles are periodic; normals `S_u x S_v` point away
+//! from the axis or centre, as IFC's do.
+
+use std::f64::consts::TAU;
+
+use glam::{DAffine3, DVec2, DVec3};
+use poinav_ifc::Entity;
+
+use crate::axis2_placement::axis2placement_3d;
+use crate::bspline;
+use crate::error::{degenerate, missing, unsupported, GeomError};
+
+/// A surface an advanced face lies on.
+#[derive(Debug, Clone)]
+pub enum Surface {
+    /// A plane (faces on it are triangulated from their bounds alone).
+    Plane,
+    /// A cylinder of `radius` about the z axis of `placement`.
+    Cylinder {
+        /// Local to metres.
+        placement: DAffine3,
+        /// Radius, metres.
+        radius: f64,
+    },
+    /// A sphere of `radius` about the origin of `placement`.
+    Sphere {
+        /// Local to metres.
+        placement: DAffine3,
+        /// Radius, metres.
+        radius: f64,
+    },
+    /// A torus about the z axis of `placement`.
+    Torus {
+        /// Local to metres.
+        placement: DAffine3,
+        /// Distance of the tube's centre from the axis, metres.
+        major: f64,
+        /// The tube's radius, metres.
+        minor: f64,
+    },
+    /// A B-spline surface.
+    BSpline(Box<bspline::Surface>),
+}
+
+/// Reads the `FaceSurface` of an advanced face (`s` metres per file unit).
+pub fn surface(e: Entity<'_>, s: f64) -> Result<Surface, GeomError> {
+    let placement = || {
+        let p = e
+            .get_ref("Position")
+            .ok_or_else(|| missing(&e, "Position"))?;
+        axis2placement_3d(p, s)
+    };
+    let length = |name: &'static str| -> Result<f64, GeomError> {
+        let v = e.get_f64(name).ok_or_else(|| missing(&e, name))? * s;
+        if v.is_finite() && v > 0.0 {
+            Ok(v)
+        } else {
+            Err(degenerate(&e, "radius is not a positive number"))
+        }
+    };
+    if e.is_a("IfcPlane") {
+        Ok(Surface::Plane)
+    } else if e.is_a("IfcCylindricalSurface") {
+        Ok(Surface::Cylinder {
+            placement: placement()?,
+            radius: length("Radius")?,
+        })
+    } else if e.is_a("IfcSphericalSurface") {
+        Ok(Surface::Sphere {
+            placement: placement()?,
+            radius: length("Radius")?,
+        })
+    } else if e.is_a("IfcToroidalSurface") {
+        Ok(Surface::Torus {
+            placement: placement()?,
+            major: length("MajorRadius")?,
+            minor: length("MinorRadius")?,
+        })
+    } else if e.is_a("IfcBSplineSurfaceWithKnots") {
+        Ok(Surface::BSpline(Box::new(bspline::surface(e, s)?)))
+    } else {
+        Err(unsupported(&e, "surface of an advanced face"))
+    }
+}
+
+impl Surface {
+    /// The periods of u and v (`None` when not periodic).
+    pub fn periods(&self) -> [Option<f64>; 2] {
+        match self {
+            Surface::Cylinder { .. } | Surface::Sphere { .. } => [Some(TAU), None],
+            Surface::Torus { .. } => [Some(TAU), Some(TAU)],
+            Surface::Plane | Surface::BSpline(_) => [None, None],
+        }
+    }
+
+    /// The point at `uv`.
+    pub fn point(&self, uv: DVec2) -> DVec3 {
+        let (u, v) = (uv.x, uv.y);
+        match self {
+            Surface::Plane => uv.extend(0.0),
+            Surface::Cylinder { placement, radius } => {
+                placement.transform_point3(DVec3::new(radius * u.cos(), radius * u.sin(), v))
+            }
+            Surface::Sphere { placement, radius } => placement.transform_point3(
+                DVec3::new(v.cos() * u.cos(), v.cos() * u.sin(), v.sin()) * *radius,
+            ),
+            Surface::Torus {
+                placement,
+                major,
+                minor,
+            } => {
+                let rho = major + minor * v.cos();
+                placement.transform_point3(DVec3::new(
+                    rho * u.cos(),
+                    rho * u.sin(),
+                    minor * v.sin(),
+                ))
+            }
+            Surface::BSpline(b) => b.point(u, v),
+        }
+    }
+
+    /// Parameters of a point on (or near) the surface; for periodic parameters the value
+    /// nearest `near` (when given) modulo the period. `None` where the parameter is not
+    /// defined (a sphere's pole: any u).
+    pub fn parameters(&self, p: DVec3, near: Option<DVec2>) -> Option<DVec2> {
+        let raw = match self {
+            Surface::Plane => Some(p.truncate()),
+            Surface::Cylinder { placement, .. } => {
+                let l = placement.inverse().transform_point3(p);
+                Some(DVec2::new(l.y.atan2(l.x), l.z))
+            }
+            Surface::Sphere { placement, radius } => {
+                let l = placement.inverse().transform_point3(p);
+                let rho = l.truncate().length();
+                if rho < 1e-9 * radius {
+                    // At a pole: u comes from the neighbours.
+                    let v = if l.z > 0.0 { TAU / 4.0 } else { -TAU / 4.0 };
+                    return near.map(|n| DVec2::new(n.x, v));
+                }
+                Some(DVec2::new(l.y.atan2(l.x), l.z.atan2(rho)))
+            }
+            Surface::Torus {
+                placement, major, ..
+            } => {
+                let l = placement.inverse().transform_point3(p);
+                let rho = l.truncate().length() - major;
+                Some(DVec2::new(l.y.atan2(l.x), l.z.atan2(rho)))
+            }
+            Surface::BSpline(b) => Some(project(b, p, near)),
+        }?;
+        let [pu, pv] = self.periods();
+        let wrap = |x: f64, period: Option<f64>, n: Option<f64>| match (period, n) {
+            (Some(t), Some(n)) => x + ((n - x) / t).round() * t,
+            _ => x,
+        };
+        Some(DVec2::new(
+            wrap(raw.x, pu, near.map(|n| n.x)),
+            wrap(raw.y, pv, near.map(|n| n.y)),
+        ))
+    }
+}
+
+/// The parameters of the point of `b` nearest `p`: the nearest of a grid (or `near`), then
+/// Gauss-Newton steps, kept within the domain.
+fn project(b: &bspline::Surface, p: DVec3, near: Option<DVec2>) -> DVec2 {
+    let (u0, u1) = b.u.domain();
+    let (v0, v1) = b.v.domain();
+    let clamp = |x: DVec2| DVec2::new(x.x.clamp(u0, u1), x.y.clamp(v0, v1));
+    let n = 24;
+    let mut best = (f64::INFINITY, DVec2::new(u0, v0));
+    let mut consider = |uv: DVec2| {
+        let d = b.point(uv.x, uv.y).distance_squared(p);
+        if d < best.0 {
+            best = (d, uv);
+        }
+    };
+    if let Some(uv) = near {
+        consider(clamp(uv));
+    }
+    for i in 0..=n {
+        for j in 0..=n {
+            consider(DVec2::new(
+                u0 + (u1 - u0) * i as f64 / n as f64,
+                v0 + (v1 - v0) * j as f64 / n as f64,
+            ));
+        }
+    }
+    let mut uv = best.1;
+    let h = 1e-7 * ((u1 - u0) + (v1 - v0));
+    for _ in 0..30 {
+        let s = b.point(uv.x, uv.y);
+        let du = (b.point((uv.x + h).min(u1), uv.y) - b.point((uv.x - h).max(u0), uv.y))
+            / ((uv.x + h).min(u1) - (uv.x - h).max(u0));
+        let dv = (b.point(uv.x, (uv.y + h).min(v1)) - b.point(uv.x, (uv.y - h).max(v0)))
+            / ((uv.y + h).min(v1) - (uv.y - h).max(v0));
+        let r = p - s;
+        let (a, c, d) = (du.dot(du), du.dot(dv), dv.dot(dv));
+        let det = a * d - c * c;
+        if det.is_nan() || det.abs() <= 1e-300 {
+            break;
+        }
+        let (gu, gv) = (du.dot(r), dv.dot(r));
+        let step = DVec2::new((d * gu - c * gv) / det, (a * gv - c * gu) / det);
+        let next = clamp(uv + step);
+        if (next - uv).length() < 1e-14 * (1.0 + uv.length()) {
+            uv = next;
+            break;
+        }
+        uv = next;
+    }
+    uv
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn parameters_invert_points() {
+        let placement =
+            DAffine3::from_translation(DVec3::new(1.0, 2.0, 3.0)) * DAffine3::from_rotation_x(0.3);
+        let surfaces = [
+            Surface::Cylinder {
+                placement,
+                radius: 0.5,
+            },
+            Surface::Sphere {
+                placement,
+                radius: 2.0,
+            },
+            Surface::Torus {
+                placement,
+                major: 3.0,
+                minor: 1.0,
+            },
+        ];
+        for s in &surfaces {
+            for uv in [
+                DVec2::new(0.3, 0.2),
+                DVec2::new(-2.0, 1.0),
+                DVec2::new(3.0, -1.2),
+            ] {
+                let p = s.point(uv);
+                let back = s.parameters(p, Some(uv)).unwrap();
+                assert!((back - uv).length() < 1e-9, "{s:?} {uv} {back}");
+                // Near a value one period on, the same point gets that period's parameter.
+                let shifted = s.parameters(p, Some(uv + DVec2::X * TAU)).unwrap();
+                assert!((shifted - uv - DVec2::X * TAU).length() < 1e-9);
+            }
+        }
+    }
+}
