@@ -18,16 +18,21 @@ use glam::{DVec2, DVec3};
 use poinav_ifc::Entity;
 
 use crate::cartesian_point::point3;
-use crate::chord_rule::too_coarse;
+use crate::chord_rule::{too_coarse, MIN_SAG};
+use crate::curve::MAX_ARC_STEP;
 use crate::edge_curve::edge_points;
 use crate::error::{degenerate, missing, required_ref, unsupported, GeomError};
 use crate::mesh::Mesh;
 use crate::polygon;
 use crate::surface::{surface, Surface};
-use crate::triangulation::{newell_normal, triangulate_2d, triangulate_3d};
+use crate::triangulation::{newell_normal, restore_skipped, triangulate_2d, triangulate_3d};
 
 /// Most refinement passes over one face.
 const MAX_PASSES: usize = 16;
+
+/// Triangles in (u, v) whose doubled area is at most this fraction of their longest edge
+/// squared are slivers (see [`refine`]).
+const SLIVER: f64 = 1e-9;
 
 /// Most triangles one curved face may be refined into.
 pub const MAX_FACE_TRIANGLES: usize = 200_000;
@@ -43,8 +48,11 @@ pub fn advanced_brep(item: Entity<'_>, s: f64) -> Result<Mesh, GeomError> {
         .get_ref("Outer")
         .ok_or_else(|| missing(&item, "Outer"))?;
     m.shell(outer)?;
+    m.orient(0, true);
     for void in item.get_refs("Voids") {
+        let from = m.mesh.triangles.len();
         m.shell(void)?;
+        m.orient(from, false);
     }
     Ok(m.mesh)
 }
@@ -65,6 +73,25 @@ struct Loop {
 }
 
 impl Mesher {
+    /// Turns the triangles from `from` on inside out when they enclose a negative volume
+    /// (`outward`: an outer shell) or a positive one (a void), whichever way the file wrote
+    /// the shell.
+    fn orient(&mut self, from: usize, outward: bool) {
+        let o = self.mesh.positions.first().copied().unwrap_or_default();
+        let v: f64 = self.mesh.triangles[from..]
+            .iter()
+            .map(|t| {
+                let [a, b, c] = t.map(|i| self.mesh.positions[i as usize] - o);
+                a.dot(b.cross(c))
+            })
+            .sum();
+        if (v < 0.0) == outward {
+            for t in &mut self.mesh.triangles[from..] {
+                t.swap(1, 2);
+            }
+        }
+    }
+
     fn vertex(&mut self, p: DVec3) -> u32 {
         let key = p.to_array().map(f64::to_bits);
         *self.weld.entry(key).or_insert_with(|| {
@@ -172,9 +199,13 @@ impl Mesher {
         let outer = outer_index(&loops, |l| newell_normal(&l.points).length());
         let outer = loops.swap_remove(outer);
         let holes: Vec<Vec<DVec3>> = loops.into_iter().map(|l| l.points).collect();
-        let Some(tris) = triangulate_3d(&outer.points, &holes) else {
+        let Some(mut tris) = triangulate_3d(&outer.points, &holes) else {
             return Ok(());
         };
+        let lengths: Vec<usize> = std::iter::once(outer.points.len())
+            .chain(holes.iter().map(Vec::len))
+            .collect();
+        restore_skipped(&mut tris, &lengths);
         let all: Vec<DVec3> = outer
             .points
             .iter()
@@ -215,9 +246,11 @@ impl Mesher {
         let mut order: Vec<usize> = vec![outer];
         order.extend((0..rings.len()).filter(|&i| i != outer));
         let holes: Vec<Vec<DVec2>> = order[1..].iter().map(|&i| rings[i].1.clone()).collect();
-        let Some(tris) = triangulate_2d(&rings[outer].1, &holes) else {
+        let Some(mut tris) = triangulate_2d(&rings[outer].1, &holes) else {
             return Ok(());
         };
+        let lengths: Vec<usize> = order.iter().map(|&i| rings[i].1.len()).collect();
+        restore_skipped(&mut tris, &lengths);
         let mut uv: Vec<DVec2> = Vec::new();
         let mut xyz: Vec<DVec3> = Vec::new();
         let mut boundary: rustc_hash::FxHashSet<(u32, u32)> = Default::default();
@@ -230,6 +263,8 @@ impl Mesher {
             uv.extend_from_slice(&rings[i].1);
             xyz.extend_from_slice(&rings[i].2);
         }
+        delaunay_flips(surf, &uv, &mut tris, &boundary);
+        flip_slivers(&uv, &mut tris, &boundary);
         let tris = refine(surf, &mut uv, &mut xyz, tris, &boundary)
             .ok_or_else(|| degenerate(face, "face needs too many triangles"))?;
         let index: Vec<u32> = xyz.iter().map(|p| self.vertex(*p)).collect();
@@ -370,8 +405,168 @@ fn close_wrapping_loops(
     rest
 }
 
+/// Makes the triangulation Delaunay (Lawson's edge flips, bounds kept) in (u, v) scaled by
+/// the surface's speeds at the middle of the face, so that the triangles the ear clipper
+/// strings between far-apart points of the bounds (across a whole cylinder) become ones
+/// between near points, which the refinement then leaves as they are where the surface is
+/// straight (along a cylinder's axis).
+fn delaunay_flips(
+    surf: &Surface,
+    uv: &[DVec2],
+    tris: &mut [[u32; 3]],
+    boundary: &rustc_hash::FxHashSet<(u32, u32)>,
+) {
+    let (lo, hi) = uv.iter().fold(
+        (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
+        |(lo, hi), p| (lo.min(*p), hi.max(*p)),
+    );
+    let mid = (lo + hi) / 2.0;
+    let h = ((hi - lo) * 1e-4).max(DVec2::splat(1e-9));
+    let speed = |d: DVec2| {
+        let v = surf.point(mid + d).distance(surf.point(mid - d)) / (2.0 * d.length());
+        if v.is_finite() && v > 0.0 {
+            v
+        } else {
+            1.0
+        }
+    };
+    let scale = DVec2::new(speed(DVec2::new(h.x, 0.0)), speed(DVec2::new(0.0, h.y)));
+    let p: Vec<DVec2> = uv.iter().map(|q| (*q - mid) * scale).collect();
+    let ccw = |t: [u32; 3]| {
+        let [a, b, c] = t.map(|i| p[i as usize]);
+        (b - a).perp_dot(c - a) > 0.0
+    };
+    // d strictly inside the circle through the counter-clockwise a, b, c.
+    let in_circle = |a: DVec2, b: DVec2, c: DVec2, d: DVec2| {
+        let (a, b, c) = (a - d, b - d, c - d);
+        let det = a.length_squared() * b.perp_dot(c) - b.length_squared() * a.perp_dot(c)
+            + c.length_squared() * a.perp_dot(b);
+        det > 1e-12 * (a.length_squared() + b.length_squared() + c.length_squared()).powi(2)
+    };
+    for _ in 0..4 * tris.len().max(1) {
+        let mut by_edge: FxHashMap<(u32, u32), Vec<usize>> = FxHashMap::default();
+        for (i, t) in tris.iter().enumerate() {
+            for k in 0..3 {
+                by_edge
+                    .entry(edge_key(t[k], t[(k + 1) % 3]))
+                    .or_default()
+                    .push(i);
+            }
+        }
+        let mut touched = vec![false; tris.len()];
+        let mut flipped = false;
+        for (key, owners) in &by_edge {
+            let [ti, tj] = owners[..] else { continue };
+            if boundary.contains(key) || touched[ti] || touched[tj] {
+                continue;
+            }
+            let t = tris[ti];
+            let Some(k) = (0..3).find(|&k| edge_key(t[k], t[(k + 1) % 3]) == *key) else {
+                continue;
+            };
+            let (a, b, c) = (t[k], t[(k + 1) % 3], t[(k + 2) % 3]);
+            let Some(&d) = tris[tj].iter().find(|&&v| v != a && v != b) else {
+                continue;
+            };
+            let [pa, pb, pc, pd] = [a, b, c, d].map(|i| p[i as usize]);
+            if !ccw(t) || !in_circle(pa, pb, pc, pd) {
+                continue;
+            }
+            let (n1, n2) = ([a, d, c], [d, b, c]);
+            if ccw(n1) && ccw(n2) {
+                tris[ti] = n1;
+                tris[tj] = n2;
+                touched[ti] = true;
+                touched[tj] = true;
+                flipped = true;
+            }
+        }
+        if !flipped {
+            break;
+        }
+    }
+}
+
+/// The unit normal of `surf` at `uv` (central differences); zero where it is not defined.
+fn normal(surf: &Surface, uv: DVec2) -> DVec3 {
+    let h = 1e-6;
+    let du = surf.point(uv + DVec2::new(h, 0.0)) - surf.point(uv - DVec2::new(h, 0.0));
+    let dv = surf.point(uv + DVec2::new(0.0, h)) - surf.point(uv - DVec2::new(0.0, h));
+    du.cross(dv).try_normalize().unwrap_or(DVec3::ZERO)
+}
+
+/// True when triangle `t` is a sliver in `uv`.
+fn is_sliver(uv: &[DVec2], t: [u32; 3]) -> bool {
+    let [a, b, c] = t.map(|i| uv[i as usize]);
+    let longest = (b - a)
+        .length_squared()
+        .max((c - b).length_squared())
+        .max((a - c).length_squared());
+    (b - a).perp_dot(c - a).abs() <= SLIVER * longest
+}
+
+/// Removes slivers (the ear clipper's triangles along a bound that is straight in (u, v) up
+/// to rounding, which would fold back across the bound in space) by flipping their longest
+/// edge where it is an inner edge and both new triangles turn counter-clockwise.
+fn flip_slivers(uv: &[DVec2], tris: &mut [[u32; 3]], boundary: &rustc_hash::FxHashSet<(u32, u32)>) {
+    let ccw = |t: [u32; 3]| {
+        let [a, b, c] = t.map(|i| uv[i as usize]);
+        (b - a).perp_dot(c - a) > 0.0
+    };
+    for _ in 0..MAX_PASSES * 4 {
+        let mut by_edge: FxHashMap<(u32, u32), Vec<usize>> = FxHashMap::default();
+        for (i, t) in tris.iter().enumerate() {
+            for k in 0..3 {
+                by_edge
+                    .entry(edge_key(t[k], t[(k + 1) % 3]))
+                    .or_default()
+                    .push(i);
+            }
+        }
+        let mut touched = vec![false; tris.len()];
+        let mut flipped = false;
+        for ti in 0..tris.len() {
+            let t = tris[ti];
+            if touched[ti] || !is_sliver(uv, t) {
+                continue;
+            }
+            let len = |k: usize| uv[t[k] as usize].distance_squared(uv[t[(k + 1) % 3] as usize]);
+            let k = (0..3)
+                .max_by(|&x, &y| len(x).total_cmp(&len(y)))
+                .unwrap_or(0);
+            let (a, b, c) = (t[k], t[(k + 1) % 3], t[(k + 2) % 3]);
+            let key = edge_key(a, b);
+            if boundary.contains(&key) {
+                continue;
+            }
+            let Some(&tj) = by_edge[&key].iter().find(|&&j| j != ti) else {
+                continue;
+            };
+            if touched[tj] {
+                continue;
+            }
+            let Some(&d) = tris[tj].iter().find(|&&v| v != a && v != b) else {
+                continue;
+            };
+            let (n1, n2) = ([a, d, c], [d, b, c]);
+            if ccw(n1) && ccw(n2) {
+                tris[ti] = n1;
+                tris[tj] = n2;
+                touched[ti] = true;
+                touched[tj] = true;
+                flipped = true;
+            }
+        }
+        if !flipped {
+            break;
+        }
+    }
+}
+
 /// Red-green refinement of `tris` (indices into `uv` / `xyz`, counter-clockwise in uv):
-/// inner edges that are [`too_coarse`] on `surf` are split at their middle in uv; `None`
+/// inner edges that are [`too_coarse`] on `surf`, or across which the surface turns by more
+/// than [`MAX_ARC_STEP`] (the arc rule for a long edge along a cylinder's axis that crosses
+/// a few degrees of it), are split at their middle in uv, except edges of slivers; `None`
 /// past [`MAX_FACE_TRIANGLES`].
 fn refine(
     surf: &Surface,
@@ -381,17 +576,36 @@ fn refine(
     boundary: &rustc_hash::FxHashSet<(u32, u32)>,
 ) -> Option<Vec<[u32; 3]>> {
     for _ in 0..MAX_PASSES {
+        // Edges of slivers (the ear clipper's triangles along a bound that is straight in
+        // (u, v) up to rounding) are left alone: they hug the bound, and their middle would
+        // fall on a point of it.
+        let mut sliver_edges: rustc_hash::FxHashSet<(u32, u32)> = Default::default();
+        for t in &tris {
+            if is_sliver(uv, *t) {
+                for k in 0..3 {
+                    sliver_edges.insert(edge_key(t[k], t[(k + 1) % 3]));
+                }
+            }
+        }
         let mut split: FxHashMap<(u32, u32), u32> = FxHashMap::default();
         for t in &tris {
             for k in 0..3 {
                 let key = edge_key(t[k], t[(k + 1) % 3]);
-                if boundary.contains(&key) || split.contains_key(&key) {
+                if boundary.contains(&key)
+                    || sliver_edges.contains(&key)
+                    || split.contains_key(&key)
+                {
                     continue;
                 }
                 let (a, b) = (key.0 as usize, key.1 as usize);
                 let m = (uv[a] + uv[b]) / 2.0;
                 let pm = surf.point(m);
-                if too_coarse(xyz[a], xyz[b], pm) {
+                let turns = || {
+                    let (na, nb) = (normal(surf, uv[a]), normal(surf, uv[b]));
+                    na.angle_between(nb) > MAX_ARC_STEP
+                        && (pm - (xyz[a] + xyz[b]) / 2.0).length() > MIN_SAG
+                };
+                if too_coarse(xyz[a], xyz[b], pm) || turns() {
                     uv.push(m);
                     xyz.push(pm);
                     split.insert(key, uv.len() as u32 - 1);
