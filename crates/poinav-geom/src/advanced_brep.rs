@@ -237,7 +237,7 @@ impl Mesher {
                 .ok_or_else(|| degenerate(face, "a bound does not lie on the face's surface"))?;
             rings.push((l.outer, uv, l.points));
         }
-        let rings = close_wrapping_loops(surf, rings);
+        let rings = close_wrapping_loops(surf, rings, same_sense);
         let rings: Vec<_> = rings.into_iter().filter(|r| r.1.len() >= 3).collect();
         if rings.is_empty() {
             return Ok(());
@@ -347,11 +347,12 @@ fn loop_parameters(surf: &Surface, points: &[DVec3]) -> Option<Vec<DVec2>> {
 }
 
 /// Loops that wind once around a periodic direction (a cylinder bounded by two circles
-/// without a seam edge) joined in pairs into one ring through a seam; other loops as
-/// they are.
+/// without a seam edge) joined in pairs into one ring through a seam, a single one on a
+/// sphere closed through a pole; other loops as they are.
 fn close_wrapping_loops(
     surf: &Surface,
     rings: Vec<(bool, Vec<DVec2>, Vec<DVec3>)>,
+    same_sense: bool,
 ) -> Vec<(bool, Vec<DVec2>, Vec<DVec3>)> {
     let [Some(period), _] = surf.periods() else {
         return rings;
@@ -366,7 +367,12 @@ fn close_wrapping_loops(
         .into_iter()
         .partition(|r| r.1.len() >= 2 && winding(&r.1) != 0.0);
     let mut it = wrapping.into_iter();
-    while let (Some(a), Some(b)) = (it.next(), it.next()) {
+    let mut left = None;
+    while let Some(a) = it.next() {
+        let Some(b) = it.next() else {
+            left = Some(a);
+            break;
+        };
         let (outer, mut uv, mut xyz) = (a.0 || b.0, a.1, a.2);
         let wa = winding(&uv);
         let (mut buv, mut bxyz) = (b.1, b.2);
@@ -400,6 +406,30 @@ fn close_wrapping_loops(
         let x = buv[0].x + ((prev - buv[0].x) / period).round() * period;
         uv.push(DVec2::new(x, buv[0].y));
         xyz.push(bxyz[0]);
+        rest.push((outer, uv, xyz));
+    }
+    // One loop left round a sphere: the face is a cap, closed through the pole on the
+    // face's side (its interior lies left of its bounds in (u, v) when the face agrees with
+    // the surface's normal).
+    if let (Some((outer, mut uv, mut xyz)), Surface::Sphere { placement, radius }) = (left, surf) {
+        let wa = winding(&uv);
+        let v = if (wa > 0.0) == same_sense {
+            std::f64::consts::FRAC_PI_2
+        } else {
+            -std::f64::consts::FRAC_PI_2
+        };
+        let pole = placement.transform_point3(DVec3::Z * radius * v.signum());
+        let (u0, v0) = (uv[0].x, uv[0].y);
+        let end = u0 + wa * period;
+        uv.push(DVec2::new(end, v0));
+        xyz.push(xyz[0]);
+        // The pole as a line in (u, v), in arc-rule steps so that the triangles reaching it
+        // stay narrow in u (in space they meet at one point).
+        let n = (period / MAX_ARC_STEP).round() as usize;
+        for k in 0..=n {
+            uv.push(DVec2::new(end + (u0 - end) * k as f64 / n as f64, v));
+            xyz.push(pole);
+        }
         rest.push((outer, uv, xyz));
     }
     rest
@@ -443,47 +473,64 @@ fn delaunay_flips(
             + c.length_squared() * a.perp_dot(b);
         det > 1e-12 * (a.length_squared() + b.length_squared() + c.length_squared()).powi(2)
     };
-    for _ in 0..4 * tris.len().max(1) {
-        let mut by_edge: FxHashMap<(u32, u32), Vec<usize>> = FxHashMap::default();
-        for (i, t) in tris.iter().enumerate() {
-            for k in 0..3 {
-                by_edge
-                    .entry(edge_key(t[k], t[(k + 1) % 3]))
-                    .or_default()
-                    .push(i);
-            }
+    let mut by_edge: FxHashMap<(u32, u32), Vec<usize>> = FxHashMap::default();
+    for (i, t) in tris.iter().enumerate() {
+        for k in 0..3 {
+            by_edge
+                .entry(edge_key(t[k], t[(k + 1) % 3]))
+                .or_default()
+                .push(i);
         }
-        let mut touched = vec![false; tris.len()];
-        let mut flipped = false;
-        for (key, owners) in &by_edge {
-            let [ti, tj] = owners[..] else { continue };
-            if boundary.contains(key) || touched[ti] || touched[tj] {
-                continue;
-            }
-            let t = tris[ti];
-            let Some(k) = (0..3).find(|&k| edge_key(t[k], t[(k + 1) % 3]) == *key) else {
-                continue;
-            };
-            let (a, b, c) = (t[k], t[(k + 1) % 3], t[(k + 2) % 3]);
-            let Some(&d) = tris[tj].iter().find(|&&v| v != a && v != b) else {
-                continue;
-            };
-            let [pa, pb, pc, pd] = [a, b, c, d].map(|i| p[i as usize]);
-            if !ccw(t) || !in_circle(pa, pb, pc, pd) {
-                continue;
-            }
-            let (n1, n2) = ([a, d, c], [d, b, c]);
-            if ccw(n1) && ccw(n2) {
-                tris[ti] = n1;
-                tris[tj] = n2;
-                touched[ti] = true;
-                touched[tj] = true;
-                flipped = true;
-            }
-        }
-        if !flipped {
+    }
+    let mut stack: Vec<(u32, u32)> = by_edge.keys().copied().collect();
+    stack.sort_unstable();
+    let mut budget = 16 * tris.len() + 1024;
+    while let Some(key) = stack.pop() {
+        if budget == 0 {
             break;
         }
+        if boundary.contains(&key) {
+            continue;
+        }
+        let Some(&[ti, tj]) = by_edge.get(&key).map(|v| &v[..]) else {
+            continue;
+        };
+        let t = tris[ti];
+        let Some(k) = (0..3).find(|&k| edge_key(t[k], t[(k + 1) % 3]) == key) else {
+            continue;
+        };
+        let (a, b, c) = (t[k], t[(k + 1) % 3], t[(k + 2) % 3]);
+        let Some(&d) = tris[tj].iter().find(|&&v| v != a && v != b) else {
+            continue;
+        };
+        let [pa, pb, pc, pd] = [a, b, c, d].map(|i| p[i as usize]);
+        if !ccw(t) || !in_circle(pa, pb, pc, pd) {
+            continue;
+        }
+        let (n1, n2) = ([a, d, c], [d, b, c]);
+        if !(ccw(n1) && ccw(n2)) || by_edge.contains_key(&edge_key(c, d)) {
+            continue;
+        }
+        budget -= 1;
+        tris[ti] = n1;
+        tris[tj] = n2;
+        by_edge.remove(&key);
+        by_edge.insert(edge_key(c, d), vec![ti, tj]);
+        let mut moved = |e: (u32, u32), from: usize, to: usize| {
+            if let Some(v) = by_edge.get_mut(&e) {
+                for x in v.iter_mut().filter(|x| **x == from) {
+                    *x = to;
+                }
+            }
+        };
+        moved(edge_key(a, d), tj, ti);
+        moved(edge_key(b, c), ti, tj);
+        stack.extend([
+            edge_key(a, d),
+            edge_key(d, b),
+            edge_key(b, c),
+            edge_key(c, a),
+        ]);
     }
 }
 
@@ -647,4 +694,56 @@ fn refine(
         }
     }
     Some(tris)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use poinav_ifc::{EntityId, Model};
+
+    fn mesh_of(data: &str, id: u64) -> Result<Mesh, GeomError> {
+        let text = format!(
+            "ISO-10303-21;HEADER;FILE_SCHEMA(('IFC4'));ENDSEC;DATA;\n{data}\nENDSEC;END-ISO-10303-21;"
+        );
+        let m = Model::from_bytes("t.ifc", text.into_bytes()).unwrap();
+        advanced_brep(m.entity(EntityId(id)).unwrap(), 1.0)
+    }
+
+    /// Every edge used once each way.
+    fn closed(m: &Mesh) -> bool {
+        let mut directed = std::collections::HashMap::new();
+        for t in &m.triangles {
+            for k in 0..3 {
+                *directed.entry((t[k], t[(k + 1) % 3])).or_insert(0) += 1;
+            }
+        }
+        directed
+            .iter()
+            .all(|(&(a, b), &n)| n == 1 && directed.get(&(b, a)) == Some(&1))
+    }
+
+    const HEMISPHERE: &str = "#1=IFCCARTESIANPOINT((0.,0.,0.));#2=IFCDIRECTION((0.,0.,1.));\
+        #3=IFCDIRECTION((1.,0.,0.));#4=IFCAXIS2PLACEMENT3D(#1,#2,#3);\
+        #5=IFCCARTESIANPOINT((2.,0.,0.));#6=IFCVERTEXPOINT(#5);#7=IFCCIRCLE(#4,2.);\
+        #8=IFCEDGECURVE(#6,#6,#7,.T.);#9=IFCORIENTEDEDGE(*,*,#8,.T.);#10=IFCEDGELOOP((#9));\
+        #11=IFCFACEOUTERBOUND(#10,.T.);#12=IFCSPHERICALSURFACE(#4,2.);\
+        #13=IFCADVANCEDFACE((#11),#12,.T.);#14=IFCORIENTEDEDGE(*,*,#8,.F.);\
+        #15=IFCEDGELOOP((#14));#16=IFCFACEOUTERBOUND(#15,.T.);#17=IFCDIRECTION((0.,0.,-1.));\
+        #18=IFCAXIS2PLACEMENT3D(#1,#17,#3);#19=IFCPLANE(#18);\
+        #20=IFCADVANCEDFACE((#16),#19,.T.);#21=IFCCLOSEDSHELL((#13,#20));\
+        #22=IFCADVANCEDBREP(#21);";
+
+    #[test]
+    fn hemisphere_is_closed_through_its_pole() {
+        let m = mesh_of(HEMISPHERE, 22).unwrap();
+        assert!(closed(&m));
+        let exact = 2.0 / 3.0 * std::f64::consts::PI * 8.0;
+        assert!(
+            (m.volume() / exact - 1.0).abs() < 0.01,
+            "{}",
+            m.volume() / exact
+        );
+        let (lo, hi) = m.bounds().unwrap();
+        assert!((hi.z - 2.0).abs() < 1e-12 && lo.z == 0.0, "{lo} {hi}");
+    }
 }

@@ -204,7 +204,7 @@ impl Curve {
     /// The parameter of the curve's point nearest `p` (a dense scan, then bisection).
     pub fn parameter_of(&self, p: DVec3) -> f64 {
         let (lo, hi) = self.basis.domain();
-        let n = 16 * self.basis.count();
+        let n = (16 * self.basis.count()).min(4096);
         let at = |i: usize| lo + (hi - lo) * i as f64 / n as f64;
         let best = (0..=n)
             .min_by(|&a, &b| {

@@ -19,7 +19,8 @@ const MAX_BISECTIONS: usize = 12;
 /// point halfway between them in parameter.
 pub fn too_coarse(a: DVec3, b: DVec3, mid: DVec3) -> bool {
     let sag = (mid - (a + b) / 2.0).length();
-    sag > MIN_SAG && sag > MAX_SAG_RATIO * a.distance(b)
+    // The margin keeps chords of exactly the arc rule's angle (rounded) from being cut.
+    sag > MIN_SAG && sag > MAX_SAG_RATIO * (1.0 + 1e-6) * a.distance(b)
 }
 
 /// Parameters and points of `f` on `[t0, t1]`, first cut into `n` equal segments, each then
