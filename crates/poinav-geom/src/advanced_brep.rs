@@ -18,7 +18,7 @@ use glam::{DVec2, DVec3};
 use poinav_ifc::Entity;
 
 use crate::cartesian_point::point3;
-use crate::chord_rule::{too_coarse, MIN_SAG};
+use crate::chord_rule::{MAX_SAG_RATIO, MIN_SAG};
 use crate::curve::MAX_ARC_STEP;
 use crate::edge_curve::edge_points;
 use crate::error::{degenerate, missing, required_ref, unsupported, GeomError};
@@ -26,6 +26,10 @@ use crate::mesh::Mesh;
 use crate::polygon;
 use crate::surface::{surface, Surface};
 use crate::triangulation::{newell_normal, restore_skipped, triangulate_2d, triangulate_3d};
+
+/// How much coarser than the arc rule an inner edge of a curved face may be: a grid cell's
+/// diagonal (cells of [`Surface::grid`] follow the arc rule along u and v).
+const INNER_SLACK: f64 = std::f64::consts::SQRT_2;
 
 /// Most refinement passes over one face.
 const MAX_PASSES: usize = 16;
@@ -263,6 +267,7 @@ impl Mesher {
             uv.extend_from_slice(&rings[i].1);
             xyz.extend_from_slice(&rings[i].2);
         }
+        insert_grid(surf, &mut uv, &mut xyz, &mut tris, &boundary);
         delaunay_flips(surf, &uv, &mut tris, &boundary);
         flip_slivers(&uv, &mut tris, &boundary);
         let tris = refine(surf, &mut uv, &mut xyz, tris, &boundary)
@@ -534,6 +539,74 @@ fn delaunay_flips(
     }
 }
 
+/// Most inner grid points one face gets.
+const MAX_GRID_POINTS: usize = 20_000;
+
+/// Puts the points of `surf`'s parameter grid ([`Surface::grid`]) that lie inside the
+/// face, and no nearer a bound than a third of the grid's step, into the triangulation:
+/// each splits the triangle holding it in three (Delaunay flips follow), so that the
+/// triangles start at about the size the surface needs instead of spanning the face.
+fn insert_grid(
+    surf: &Surface,
+    uv: &mut Vec<DVec2>,
+    xyz: &mut Vec<DVec3>,
+    tris: &mut Vec<[u32; 3]>,
+    boundary: &rustc_hash::FxHashSet<(u32, u32)>,
+) {
+    let (lo, hi) = uv.iter().fold(
+        (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
+        |(lo, hi), p| (lo.min(*p), hi.max(*p)),
+    );
+    let [us, vs] = surf.grid(lo, hi);
+    if us.is_empty() || vs.is_empty() || us.len() * vs.len() > MAX_GRID_POINTS {
+        return;
+    }
+    let step = |l: &[f64], span: f64| {
+        l.windows(2)
+            .map(|w| w[1] - w[0])
+            .fold(span, f64::min)
+            .max(1e-12)
+    };
+    let scale = DVec2::new(1.0 / step(&us, hi.x - lo.x), 1.0 / step(&vs, hi.y - lo.y));
+    let segments: Vec<(DVec2, DVec2)> = boundary
+        .iter()
+        .map(|&(a, b)| (uv[a as usize] * scale, uv[b as usize] * scale))
+        .collect();
+    let near_bound = |p: DVec2| {
+        segments.iter().any(|&(a, b)| {
+            let (a, d) = (a - p, b - a);
+            let t = (-a.dot(d) / d.length_squared().max(1e-300)).clamp(0.0, 1.0);
+            (a + d * t).length() < 1.0 / 3.0
+        })
+    };
+    for &u in &us {
+        for &v in &vs {
+            let p = DVec2::new(u, v);
+            if near_bound(p * scale) {
+                continue;
+            }
+            let inside = tris.iter().position(|t| {
+                let [a, b, c] = t.map(|i| uv[i as usize]);
+                let area = (b - a).perp_dot(c - a);
+                area > 0.0
+                    && [(a, b), (b, c), (c, a)]
+                        .iter()
+                        .all(|(x, y)| (*y - *x).perp_dot(p - *x) > 1e-9 * area)
+            });
+            let Some(ti) = inside else {
+                continue;
+            };
+            let [a, b, c] = tris[ti];
+            let i = uv.len() as u32;
+            uv.push(p);
+            xyz.push(surf.point(p));
+            tris[ti] = [a, b, i];
+            tris.push([b, c, i]);
+            tris.push([c, a, i]);
+        }
+    }
+}
+
 /// The unit normal of `surf` at `uv` (central differences); zero where it is not defined.
 fn normal(surf: &Surface, uv: DVec2) -> DVec3 {
     let h = 1e-6;
@@ -611,10 +684,10 @@ fn flip_slivers(uv: &[DVec2], tris: &mut [[u32; 3]], boundary: &rustc_hash::FxHa
 }
 
 /// Red-green refinement of `tris` (indices into `uv` / `xyz`, counter-clockwise in uv):
-/// inner edges that are [`too_coarse`] on `surf`, or across which the surface turns by more
-/// than [`MAX_ARC_STEP`] (the arc rule for a long edge along a cylinder's axis that crosses
-/// a few degrees of it), are split at their middle in uv, except edges of slivers; `None`
-/// past [`MAX_FACE_TRIANGLES`].
+/// inner edges whose sagitta on `surf` breaks the chord rule, or across which the surface
+/// turns by more than [`MAX_ARC_STEP`] (the arc rule for a long edge along a cylinder's
+/// axis that crosses a few degrees of it), both with [`INNER_SLACK`], are split at their
+/// middle in uv, except edges of slivers; `None` past [`MAX_FACE_TRIANGLES`].
 fn refine(
     surf: &Surface,
     uv: &mut Vec<DVec2>,
@@ -647,12 +720,13 @@ fn refine(
                 let (a, b) = (key.0 as usize, key.1 as usize);
                 let m = (uv[a] + uv[b]) / 2.0;
                 let pm = surf.point(m);
-                let turns = || {
-                    let (na, nb) = (normal(surf, uv[a]), normal(surf, uv[b]));
-                    na.angle_between(nb) > MAX_ARC_STEP
-                        && (pm - (xyz[a] + xyz[b]) / 2.0).length() > MIN_SAG
-                };
-                if too_coarse(xyz[a], xyz[b], pm) || turns() {
+                let sag = (pm - (xyz[a] + xyz[b]) / 2.0).length();
+                let coarse = sag > MIN_SAG
+                    && (sag > MAX_SAG_RATIO * INNER_SLACK * xyz[a].distance(xyz[b]) || {
+                        let (na, nb) = (normal(surf, uv[a]), normal(surf, uv[b]));
+                        na.angle_between(nb) > MAX_ARC_STEP * INNER_SLACK
+                    });
+                if coarse {
                     uv.push(m);
                     xyz.push(pm);
                     split.insert(key, uv.len() as u32 - 1);

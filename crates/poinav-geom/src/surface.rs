@@ -12,6 +12,8 @@ use poinav_ifc::Entity;
 
 use crate::axis2_placement::axis2placement_3d;
 use crate::bspline;
+use crate::chord_rule;
+use crate::curve::MAX_ARC_STEP;
 use crate::error::{degenerate, missing, unsupported, GeomError};
 
 /// A surface an advanced face lies on.
@@ -94,6 +96,44 @@ impl Surface {
             Surface::Cylinder { .. } | Surface::Sphere { .. } => [Some(TAU), None],
             Surface::Torus { .. } => [Some(TAU), Some(TAU)],
             Surface::Plane | Surface::BSpline(_) => [None, None],
+        }
+    }
+
+    /// Parameter values strictly between `lo` and `hi` at which a face on the surface gets
+    /// inner points before it is refined: every [`MAX_ARC_STEP`] of an angle, the chord
+    /// rule's samples of a B-spline's middle iso-curves; none along a cylinder's axis (it is
+    /// straight) or on a plane.
+    pub fn grid(&self, lo: DVec2, hi: DVec2) -> [Vec<f64>; 2] {
+        let angles = |a: f64, b: f64| -> Vec<f64> {
+            if (b - a).is_nan() || b - a >= 2.0 * TAU {
+                return Vec::new();
+            }
+            let first = (a / MAX_ARC_STEP).floor() as i64 + 1;
+            let last = (b / MAX_ARC_STEP).ceil() as i64 - 1;
+            (first..=last)
+                .map(|k| k as f64 * MAX_ARC_STEP)
+                .filter(|&x| x > a && x < b)
+                .collect()
+        };
+        match self {
+            Surface::Plane => [Vec::new(), Vec::new()],
+            Surface::Cylinder { .. } => [angles(lo.x, hi.x), Vec::new()],
+            Surface::Sphere { .. } | Surface::Torus { .. } => {
+                [angles(lo.x, hi.x), angles(lo.y, hi.y)]
+            }
+            Surface::BSpline(b) => {
+                let mid = (lo + hi) / 2.0;
+                let inside = |ts: Vec<(f64, DVec3)>, a: f64, z: f64| -> Vec<f64> {
+                    ts.into_iter()
+                        .map(|t| t.0)
+                        .filter(|&t| t > a && t < z)
+                        .collect()
+                };
+                let n = |count: usize| (2 * count).min(1024);
+                let u = chord_rule::sample(&|u| b.point(u, mid.y), lo.x, hi.x, n(b.u.count()));
+                let v = chord_rule::sample(&|v| b.point(mid.x, v), lo.y, hi.y, n(b.v.count()));
+                [inside(u, lo.x, hi.x), inside(v, lo.y, hi.y)]
+            }
         }
     }
 
