@@ -808,6 +808,57 @@ mod tests {
         #22=IFCADVANCEDBREP(#21);";
 
     #[test]
+    fn damaged_faces_are_errors_naming_their_instance() {
+        // The hemisphere's face on a sphere of the wrong radius, on an unsupported surface,
+        // and on a B-spline surface whose knots do not fit its control points.
+        let wrong_radius = HEMISPHERE.replace(
+            "#12=IFCSPHERICALSURFACE(#4,2.)",
+            "#12=IFCSPHERICALSURFACE(#4,3.)",
+        );
+        let e = mesh_of(&wrong_radius, 22).unwrap_err();
+        assert!(
+            matches!(
+                e,
+                GeomError::Degenerate {
+                    id: EntityId(13),
+                    ..
+                }
+            ),
+            "{e}"
+        );
+        let unsupported = HEMISPHERE.replace(
+            "#12=IFCSPHERICALSURFACE(#4,2.)",
+            "#12=IFCSURFACEOFLINEAREXTRUSION(#30,#4,#2,1.);#30=IFCRECTANGLEPROFILEDEF(.AREA.,$,$,1.,1.)",
+        );
+        let e = mesh_of(&unsupported, 22).unwrap_err();
+        assert!(
+            matches!(
+                e,
+                GeomError::Unsupported {
+                    id: EntityId(12),
+                    ..
+                }
+            ),
+            "{e}"
+        );
+        let knots = HEMISPHERE.replace(
+            "#12=IFCSPHERICALSURFACE(#4,2.)",
+            "#12=IFCBSPLINESURFACEWITHKNOTS(1,1,((#5,#5),(#5,#5)),.UNSPECIFIED.,.F.,.F.,.F.,(2,2),(2,1),(0.,1.),(0.,1.),.UNSPECIFIED.)",
+        );
+        let e = mesh_of(&knots, 22).unwrap_err();
+        assert!(
+            matches!(
+                e,
+                GeomError::Degenerate {
+                    id: EntityId(12),
+                    ..
+                }
+            ),
+            "{e}"
+        );
+    }
+
+    #[test]
     fn hemisphere_is_closed_through_its_pole() {
         let m = mesh_of(HEMISPHERE, 22).unwrap();
         assert!(closed(&m));

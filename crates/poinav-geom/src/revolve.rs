@@ -212,6 +212,29 @@ mod tests {
     }
 
     #[test]
+    fn zero_angles_and_mismatched_end_profiles_are_errors() {
+        let text = "ISO-10303-21;HEADER;FILE_SCHEMA(('IFC4'));ENDSEC;DATA;\n\
+            #1=IFCRECTANGLEPROFILEDEF(.AREA.,$,$,1.,2.);#2=IFCCARTESIANPOINT((-2.,0.,0.));\
+            #3=IFCDIRECTION((0.,1.,0.));#4=IFCAXIS1PLACEMENT(#2,#3);\
+            #5=IFCREVOLVEDAREASOLID(#1,$,#4,0.);#6=IFCCIRCLEPROFILEDEF(.AREA.,$,$,0.5);\
+            #7=IFCREVOLVEDAREASOLIDTAPERED(#1,$,#4,1.,#6);#8=IFCREVOLVEDAREASOLID(#1,$,#4,1.);\
+            ENDSEC;END-ISO-10303-21;";
+        let m = poinav_ifc::Model::from_bytes("t.ifc", text.as_bytes().to_vec()).unwrap();
+        let at = |id| m.entity(poinav_ifc::EntityId(id)).unwrap();
+        for id in [5, 7] {
+            let e = revolved_area_solid(at(id), &Units::SI).unwrap_err();
+            assert!(
+                matches!(e, GeomError::Degenerate { .. }) && e.id().0 == id,
+                "{e}"
+            );
+        }
+        // A 1 x 2 rectangle 2 m off the axis turned by one radian: V = 2 * 2 * 1 (Pappus),
+        // less the chords' loss.
+        let v = revolved_area_solid(at(8), &Units::SI).unwrap().volume();
+        assert!((v / 4.0 - 1.0).abs() < 0.002, "{v}");
+    }
+
+    #[test]
     fn tapered_full_turn_is_a_cone_frustum() {
         // Radius 1 at the start to 0.5 at the end over a full turn, capped at both ends.
         let m = revolve(
