@@ -572,37 +572,100 @@ fn insert_grid(
         .iter()
         .map(|&(a, b)| (uv[a as usize] * scale, uv[b as usize] * scale))
         .collect();
+    // Segments by the unit cells (of the scaled grid) their box, grown by a third, covers.
+    let cell = |x: f64| x.floor() as i64;
+    let mut cells: FxHashMap<(i64, i64), Vec<usize>> = FxHashMap::default();
+    for (i, &(a, b)) in segments.iter().enumerate() {
+        let (lo, hi) = (a.min(b) - 1.0 / 3.0, a.max(b) + 1.0 / 3.0);
+        if (hi - lo).max_element() > 1e4 {
+            return;
+        }
+        for x in cell(lo.x)..=cell(hi.x) {
+            for y in cell(lo.y)..=cell(hi.y) {
+                cells.entry((x, y)).or_default().push(i);
+            }
+        }
+    }
     let near_bound = |p: DVec2| {
-        segments.iter().any(|&(a, b)| {
-            let (a, d) = (a - p, b - a);
-            let t = (-a.dot(d) / d.length_squared().max(1e-300)).clamp(0.0, 1.0);
-            (a + d * t).length() < 1.0 / 3.0
+        cells.get(&(cell(p.x), cell(p.y))).is_some_and(|list| {
+            list.iter().any(|&i| {
+                let (a, b) = segments[i];
+                let (a, d) = (a - p, b - a);
+                let t = (-a.dot(d) / d.length_squared().max(1e-300)).clamp(0.0, 1.0);
+                (a + d * t).length() < 1.0 / 3.0
+            })
         })
     };
+    let mut by_edge: FxHashMap<(u32, u32), Vec<usize>> = FxHashMap::default();
+    for (i, t) in tris.iter().enumerate() {
+        for k in 0..3 {
+            by_edge
+                .entry(edge_key(t[k], t[(k + 1) % 3]))
+                .or_default()
+                .push(i);
+        }
+    }
+    let strictly_inside = |t: [u32; 3], p: DVec2, uv: &[DVec2]| {
+        let [a, b, c] = t.map(|i| uv[i as usize]);
+        let area = (b - a).perp_dot(c - a);
+        area > 0.0
+            && [(a, b), (b, c), (c, a)]
+                .iter()
+                .all(|(x, y)| (*y - *x).perp_dot(p - *x) > 1e-9 * area)
+    };
+    let mut last = 0;
     for &u in &us {
         for &v in &vs {
             let p = DVec2::new(u, v);
             if near_bound(p * scale) {
                 continue;
             }
-            let inside = tris.iter().position(|t| {
-                let [a, b, c] = t.map(|i| uv[i as usize]);
-                let area = (b - a).perp_dot(c - a);
-                area > 0.0
-                    && [(a, b), (b, c), (c, a)]
-                        .iter()
-                        .all(|(x, y)| (*y - *x).perp_dot(p - *x) > 1e-9 * area)
-            });
-            let Some(ti) = inside else {
+            // Walk from the last triangle split towards p, across the edge p lies beyond.
+            let mut ti = last.min(tris.len() - 1);
+            let mut found = None;
+            for step in 0..tris.len() {
+                let t = tris[ti];
+                // Edges tried from a turning start (a stochastic walk cannot cycle for ever).
+                let beyond = (0..3).map(|k| (k + step * 7 / 3) % 3).find(|&k| {
+                    let (x, y) = (uv[t[k] as usize], uv[t[(k + 1) % 3] as usize]);
+                    (y - x).perp_dot(p - x) < 0.0
+                });
+                let Some(k) = beyond else {
+                    found = Some(ti);
+                    break;
+                };
+                let key = edge_key(t[k], t[(k + 1) % 3]);
+                match by_edge.get(&key).and_then(|o| o.iter().find(|&&j| j != ti)) {
+                    Some(&j) => ti = j,
+                    None => break,
+                }
+            }
+            // A point on an edge, or one the walk cannot reach, is left out.
+            let found = found.filter(|&ti| strictly_inside(tris[ti], p, uv));
+            let Some(ti) = found else {
                 continue;
             };
             let [a, b, c] = tris[ti];
             let i = uv.len() as u32;
             uv.push(p);
             xyz.push(surf.point(p));
+            let (n1, n2) = (tris.len(), tris.len() + 1);
             tris[ti] = [a, b, i];
             tris.push([b, c, i]);
             tris.push([c, a, i]);
+            let mut moved = |e: (u32, u32), to: usize| {
+                if let Some(o) = by_edge.get_mut(&e) {
+                    for x in o.iter_mut().filter(|x| **x == ti) {
+                        *x = to;
+                    }
+                }
+            };
+            moved(edge_key(b, c), n1);
+            moved(edge_key(c, a), n2);
+            by_edge.insert(edge_key(a, i), vec![ti, n2]);
+            by_edge.insert(edge_key(b, i), vec![ti, n1]);
+            by_edge.insert(edge_key(c, i), vec![n1, n2]);
+            last = ti;
         }
     }
 }
@@ -806,6 +869,34 @@ mod tests {
         #18=IFCAXIS2PLACEMENT3D(#1,#17,#3);#19=IFCPLANE(#18);\
         #20=IFCADVANCEDFACE((#16),#19,.T.);#21=IFCCLOSEDSHELL((#13,#20));\
         #22=IFCADVANCEDBREP(#21);";
+
+    #[test]
+    fn torus_bounded_by_two_seams_is_closed() {
+        // R = 2, r = 0.5: one face, its loop the outer equator and the tube circle at u = 0,
+        // each run both ways; V = 2 pi^2 R r^2.
+        let text = "#1=IFCCARTESIANPOINT((0.,0.,0.));#2=IFCDIRECTION((0.,0.,1.));\
+            #3=IFCDIRECTION((1.,0.,0.));#4=IFCAXIS2PLACEMENT3D(#1,#2,#3);\
+            #5=IFCCARTESIANPOINT((2.5,0.,0.));#6=IFCVERTEXPOINT(#5);#7=IFCCIRCLE(#4,2.5);\
+            #8=IFCEDGECURVE(#6,#6,#7,.T.);#9=IFCCARTESIANPOINT((2.,0.,0.));\
+            #10=IFCDIRECTION((0.,-1.,0.));#11=IFCAXIS2PLACEMENT3D(#9,#10,#3);\
+            #12=IFCCIRCLE(#11,0.5);#13=IFCEDGECURVE(#6,#6,#12,.T.);\
+            #14=IFCORIENTEDEDGE(*,*,#8,.T.);#15=IFCORIENTEDEDGE(*,*,#13,.T.);\
+            #16=IFCORIENTEDEDGE(*,*,#8,.F.);#17=IFCORIENTEDEDGE(*,*,#13,.F.);\
+            #18=IFCEDGELOOP((#14,#15,#16,#17));#19=IFCFACEOUTERBOUND(#18,.T.);\
+            #20=IFCTOROIDALSURFACE(#4,2.,0.5);#21=IFCADVANCEDFACE((#19),#20,.T.);\
+            #22=IFCCLOSEDSHELL((#21));#23=IFCADVANCEDBREP(#22);";
+        let m = mesh_of(text, 23).unwrap();
+        assert!(closed(&m));
+        let exact = 2.0 * std::f64::consts::PI.powi(2) * 2.0 * 0.25;
+        assert!(
+            (m.volume() / exact - 1.0).abs() < 0.01,
+            "{}",
+            m.volume() / exact
+        );
+        let (lo, hi) = m.bounds().unwrap();
+        assert!((hi - DVec3::new(2.5, 2.5, 0.5)).length() < 1e-3, "{hi}");
+        assert!((lo + DVec3::new(2.5, 2.5, 0.5)).length() < 1e-3, "{lo}");
+    }
 
     #[test]
     fn damaged_faces_are_errors_naming_their_instance() {

@@ -100,7 +100,8 @@ impl Surface {
     }
 
     /// Parameter values strictly between `lo` and `hi` at which a face on the surface gets
-    /// inner points before it is refined: every [`MAX_ARC_STEP`] of an angle, the chord
+    /// inner points before it is refined: every [`MAX_ARC_STEP`] of an angle (half a step
+    /// off its multiples), the chord
     /// rule's samples of a B-spline's middle iso-curves; none along a cylinder's axis (it is
     /// straight) or on a plane.
     pub fn grid(&self, lo: DVec2, hi: DVec2) -> [Vec<f64>; 2] {
@@ -108,10 +109,11 @@ impl Surface {
             if (b - a).is_nan() || b - a >= 2.0 * TAU {
                 return Vec::new();
             }
-            let first = (a / MAX_ARC_STEP).floor() as i64 + 1;
-            let last = (b / MAX_ARC_STEP).ceil() as i64 - 1;
+            // Half a step off the multiples of the step, where the bounds' arcs have points.
+            let first = (a / MAX_ARC_STEP - 0.5).floor() as i64;
+            let last = (b / MAX_ARC_STEP - 0.5).ceil() as i64;
             (first..=last)
-                .map(|k| k as f64 * MAX_ARC_STEP)
+                .map(|k| (k as f64 + 0.5) * MAX_ARC_STEP)
                 .filter(|&x| x > a && x < b)
                 .collect()
         };
