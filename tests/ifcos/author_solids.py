@@ -22,7 +22,7 @@ placed at its own spot, so placements count), all on one storey:
 
 Then every proxy is meshed by ifcopenshell.geom (world coordinates, default settings) and one
 JSON object is printed mapping each case name to {guid, ifcopenshell: true, min, max,
-volume} (see `volume`: null when IfcOpenShell's mesh is not closed), or {guid, error} when
+volume, area} (see `volume`: null when IfcOpenShell's mesh is not closed), or {guid, error} when
 IfcOpenShell gives no shape (IfcOpenShell 0.9 fails on IfcRightCircularCone,
 IfcRightCircularCylinder and this IfcAdvancedBrepWithVoids), each with `expected`: the exact volume, the bounding box where
 IfcOpenShell gives none or a wrong one, and `ifcos_wrong`, why IfcOpenShell's shape is not
@@ -401,11 +401,11 @@ f.write(sys.argv[1])
 
 
 def volume(verts, faces):
-    """The enclosed volume of a triangle mesh, made robust against what IfcOpenShell 0.9 gives
-    for some solids (a pyramid with its sides facing in, a tapered extrusion with its caps
-    written twice): vertices welded, repeated triangles dropped, every connected part oriented
-    consistently across shared edges, each part counted positive. None when the mesh is not
-    closed (an edge not shared by exactly two triangles)."""
+    """The enclosed volume and the surface area of a triangle mesh, made robust against what
+    IfcOpenShell 0.9 gives for some solids (a pyramid with its sides facing in, a tapered
+    extrusion with its caps written twice): vertices welded, repeated triangles dropped, every
+    connected part oriented consistently across shared edges, each part counted positive.
+    (None, None) when the mesh is not closed (an edge not shared by exactly two triangles)."""
     keys = {}
     index = [keys.setdefault(tuple(np.round(v, 7)), len(keys)) for v in verts]
     pts = np.array(list(keys.keys()), dtype=float)
@@ -421,7 +421,7 @@ def volume(verts, faces):
         for k in range(3):
             by_edge.setdefault(frozenset((t[k], t[(k + 1) % 3])), []).append(n)
     if any(len(v) != 2 for v in by_edge.values()):
-        return None
+        return None, None
     done = [False] * len(tris)
     total = 0.0
     for first in range(len(tris)):
@@ -446,7 +446,9 @@ def volume(verts, faces):
                     stack.append(m)
         tri = pts[np.array([tris[n] for n in part])]
         total += abs(np.einsum("ij,ij->i", tri[:, 0], np.cross(tri[:, 1], tri[:, 2])).sum() / 6.0)
-    return float(total)
+    tri = pts[np.array(tris)]
+    area = 0.5 * np.linalg.norm(np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]), axis=1).sum()
+    return float(total), float(area)
 
 
 settings = ifcopenshell.geom.settings()
@@ -467,12 +469,14 @@ try:
             continue
         verts = np.array(shape.geometry.verts, dtype=float).reshape(-1, 3)
         faces = np.array(shape.geometry.faces, dtype=int).reshape(-1, 3)
+        v, a = volume(verts, faces)
         out[p.Name] = {
             "guid": p.GlobalId,
             "ifcopenshell": True,
             "min": verts.min(axis=0).tolist(),
             "max": verts.max(axis=0).tolist(),
-            "volume": volume(verts, faces),
+            "volume": v,
+            "area": a,
         }
 finally:
     os.dup2(saved, 1)

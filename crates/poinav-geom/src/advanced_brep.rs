@@ -18,7 +18,7 @@ use glam::{DVec2, DVec3};
 use poinav_ifc::Entity;
 
 use crate::cartesian_point::point3;
-use crate::chord_rule::{MAX_SAG_RATIO, MIN_SAG};
+use crate::chord_rule::{self, MAX_SAG_RATIO, MIN_SAG};
 use crate::curve::MAX_ARC_STEP;
 use crate::edge_curve::edge_points;
 use crate::error::{degenerate, missing, required_ref, unsupported, GeomError};
@@ -57,6 +57,28 @@ pub fn advanced_brep(item: Entity<'_>, s: f64) -> Result<Mesh, GeomError> {
         let from = m.mesh.triangles.len();
         m.shell(void)?;
         m.orient(from, false);
+    }
+    Ok(m.mesh)
+}
+
+/// True when a surface model (`IfcShellBasedSurfaceModel`, `IfcFaceBasedSurfaceModel`) has
+/// faces on surfaces (`IfcFaceSurface`, `IfcAdvancedFace`), which [`surface_model`] meshes.
+pub fn has_face_surfaces(item: Entity<'_>) -> bool {
+    let shells = [item.get_refs("SbsmBoundary"), item.get_refs("FbsmFaces")].concat();
+    shells
+        .iter()
+        .flat_map(|sh| sh.get_refs("CfsFaces"))
+        .any(|f| f.is_a("IfcFaceSurface"))
+}
+
+/// The open mesh of a surface model whose faces lie on surfaces, metres.
+pub fn surface_model(item: Entity<'_>, s: f64) -> Result<Mesh, GeomError> {
+    let mut m = Mesher {
+        s,
+        ..Mesher::default()
+    };
+    for shell in [item.get_refs("SbsmBoundary"), item.get_refs("FbsmFaces")].concat() {
+        m.shell(shell)?;
     }
     Ok(m.mesh)
 }
@@ -399,9 +421,15 @@ fn close_wrapping_loops(
         buv.rotate_left(start);
         bxyz.rotate_left(start);
         let shift = ((end - buv[0].x) / period).round() * period;
-        uv.push(DVec2::new(end, uv[0].y));
+        let (a0, b0) = (DVec2::new(end, uv[0].y), buv[0] + DVec2::X * shift);
+        let seam = seam_points(surf, a0, b0);
+        uv.push(a0);
         xyz.push(xyz[0]);
-        let mut prev = buv[0].x + shift;
+        for (q, p) in &seam {
+            uv.push(*q);
+            xyz.push(*p);
+        }
+        let mut prev = b0.x;
         for (q, p) in buv.iter().zip(&bxyz) {
             let x = q.x + ((prev - q.x) / period).round() * period;
             uv.push(DVec2::new(x, q.y));
@@ -411,6 +439,12 @@ fn close_wrapping_loops(
         let x = buv[0].x + ((prev - buv[0].x) / period).round() * period;
         uv.push(DVec2::new(x, buv[0].y));
         xyz.push(bxyz[0]);
+        // The same seam back, one period over, through the same points.
+        let back = DVec2::X * (x - b0.x);
+        for (q, p) in seam.iter().rev() {
+            uv.push(*q + back);
+            xyz.push(*p);
+        }
         rest.push((outer, uv, xyz));
     }
     // One loop left round a sphere: the face is a cap, closed through the pole on the
@@ -426,18 +460,41 @@ fn close_wrapping_loops(
         let pole = placement.transform_point3(DVec3::Z * radius * v.signum());
         let (u0, v0) = (uv[0].x, uv[0].y);
         let end = u0 + wa * period;
+        // Up the meridian at the loop's end, along the pole (a line in (u, v), in arc-rule
+        // steps so that the triangles reaching it stay narrow in u; in space one point),
+        // down the same meridian one period back.
+        let seam = seam_points(surf, DVec2::new(end, v0), DVec2::new(end, v));
         uv.push(DVec2::new(end, v0));
         xyz.push(xyz[0]);
-        // The pole as a line in (u, v), in arc-rule steps so that the triangles reaching it
-        // stay narrow in u (in space they meet at one point).
+        for (q, p) in &seam {
+            uv.push(*q);
+            xyz.push(*p);
+        }
         let n = (period / MAX_ARC_STEP).round() as usize;
         for k in 0..=n {
             uv.push(DVec2::new(end + (u0 - end) * k as f64 / n as f64, v));
             xyz.push(pole);
         }
+        for (q, p) in seam.iter().rev() {
+            uv.push(DVec2::new(u0, q.y));
+            xyz.push(*p);
+        }
         rest.push((outer, uv, xyz));
     }
     rest
+}
+
+/// The points strictly between `a` and `b` (a straight line in (u, v)) that the chord rule
+/// needs on `surf`, with their positions.
+fn seam_points(surf: &Surface, a: DVec2, b: DVec2) -> Vec<(DVec2, DVec3)> {
+    let f = |t: f64| surf.point(a.lerp(b, t));
+    let pts = chord_rule::sample(&f, 0.0, 1.0, 4);
+    let n = pts.len();
+    pts.into_iter()
+        .take(n.saturating_sub(1))
+        .skip(1)
+        .map(|(t, p)| (a.lerp(b, t), p))
+        .collect()
 }
 
 /// Makes the triangulation Delaunay (Lawson's edge flips, bounds kept) in (u, v) scaled by
@@ -893,9 +950,34 @@ mod tests {
             "{}",
             m.volume() / exact
         );
+        // No folds: the area too is the torus's, 4 pi^2 R r.
+        let area = 4.0 * std::f64::consts::PI.powi(2);
+        assert!((m.area() / area - 1.0).abs() < 0.01, "{}", m.area() / area);
         let (lo, hi) = m.bounds().unwrap();
         assert!((hi - DVec3::new(2.5, 2.5, 0.5)).length() < 1e-3, "{hi}");
         assert!((lo + DVec3::new(2.5, 2.5, 0.5)).length() < 1e-3, "{lo}");
+    }
+
+    #[test]
+    fn surface_model_of_an_advanced_face() {
+        // The hemisphere's spherical face alone, as a shell-based surface model: open, its
+        // area 2 pi r^2.
+        let text =
+            format!("{HEMISPHERE}#30=IFCOPENSHELL((#13));#31=IFCSHELLBASEDSURFACEMODEL((#30));");
+        let text = format!(
+            "ISO-10303-21;HEADER;FILE_SCHEMA(('IFC4'));ENDSEC;DATA;\n{text}\nENDSEC;END-ISO-10303-21;"
+        );
+        let model = Model::from_bytes("t.ifc", text.into_bytes()).unwrap();
+        let item = model.entity(EntityId(31)).unwrap();
+        assert!(has_face_surfaces(item));
+        let (m, solid) = crate::brep::face_mesh(item, 1.0).unwrap();
+        assert!(!solid && !closed(&m));
+        let exact = 2.0 * std::f64::consts::PI * 4.0;
+        assert!(
+            (m.area() / exact - 1.0).abs() < 0.01,
+            "{}",
+            m.area() / exact
+        );
     }
 
     #[test]
@@ -959,6 +1041,9 @@ mod tests {
             "{}",
             m.volume() / exact
         );
+        // No folds along the seam meridian: the area is the dome's and the disc's, 3 pi r^2.
+        let area = 3.0 * std::f64::consts::PI * 4.0;
+        assert!((m.area() / area - 1.0).abs() < 0.01, "{}", m.area() / area);
         let (lo, hi) = m.bounds().unwrap();
         assert!((hi.z - 2.0).abs() < 1e-12 && lo.z == 0.0, "{lo} {hi}");
     }

@@ -128,9 +128,13 @@ impl FaceMesher {
 }
 
 /// The mesh of an `IfcFacetedBrep` (outer shell and, for `...WithVoids`, the void shells),
-/// an `IfcShellBasedSurfaceModel` or an `IfcFaceBasedSurfaceModel`, in metres; true when it
-/// is a solid (a brep) rather than a surface model.
+/// an `IfcShellBasedSurfaceModel` or an `IfcFaceBasedSurfaceModel` (faces on surfaces by
+/// [`crate::advanced_brep::surface_model`]), in metres; true when it is a solid (a brep)
+/// rather than a surface model.
 pub fn face_mesh(item: Entity<'_>, s: f64) -> Result<(Mesh, bool), GeomError> {
+    if !item.is_a("IfcManifoldSolidBrep") && crate::advanced_brep::has_face_surfaces(item) {
+        return Ok((crate::advanced_brep::surface_model(item, s)?, false));
+    }
     let mut m = FaceMesher::default();
     let solid = if item.is_a("IfcManifoldSolidBrep") {
         if !item.is_a("IfcFacetedBrep") {
