@@ -65,10 +65,16 @@ pub fn advanced_brep(item: Entity<'_>, s: f64) -> Result<Mesh, GeomError> {
 /// faces on surfaces (`IfcFaceSurface`, `IfcAdvancedFace`), which [`surface_model`] meshes.
 pub fn has_face_surfaces(item: Entity<'_>) -> bool {
     let shells = [item.get_refs("SbsmBoundary"), item.get_refs("FbsmFaces")].concat();
-    shells
-        .iter()
-        .flat_map(|sh| sh.get_refs("CfsFaces"))
-        .any(|f| f.is_a("IfcFaceSurface"))
+    // Exporters do not mix face kinds in one shell: its first face tells.
+    shells.iter().any(|sh| {
+        sh.get("CfsFaces")
+            .and_then(|v| {
+                v.as_list()
+                    .and_then(|l| l.first().and_then(|f| f.as_ref_id()))
+            })
+            .and_then(|id| sh.model().entity(id))
+            .is_some_and(|f| f.is_a("IfcFaceSurface"))
+    })
 }
 
 /// The open mesh of a surface model whose faces lie on surfaces, metres.
