@@ -621,7 +621,7 @@ fn insert_grid(
         |(lo, hi), p| (lo.min(*p), hi.max(*p)),
     );
     let [us, vs] = surf.grid(lo, hi);
-    if us.is_empty() || vs.is_empty() || us.len() * vs.len() > MAX_GRID_POINTS {
+    if tris.is_empty() || us.is_empty() || vs.is_empty() || us.len() * vs.len() > MAX_GRID_POINTS {
         return;
     }
     let step = |l: &[f64], span: f64| {

@@ -430,6 +430,37 @@ mod tests {
         assert!(Basis::new(3, vec![0.0; 7], 3).is_none());
     }
 
+    proptest::proptest! {
+        /// Any knot vector the constructor takes evaluates without panicking, anywhere
+        /// (outside the domain and NaN too), and its basis sums to one inside the domain.
+        #[test]
+        fn any_accepted_basis_evaluates(
+            degree in 1usize..5,
+            gaps in proptest::collection::vec(0.0f64..2.0, 2..16),
+            count in 2usize..12,
+            t in -1.0f64..40.0,
+        ) {
+            let mut knots = vec![0.0];
+            for g in &gaps {
+                knots.push(knots.last().unwrap() + g);
+            }
+            knots.truncate(count + degree + 1);
+            if let Some(b) = Basis::new(degree, knots, count) {
+                for x in [t, f64::NAN, f64::INFINITY, -f64::INFINITY] {
+                    let n = b.functions(b.span(x), x);
+                    let (lo, hi) = b.domain();
+                    if (lo..=hi).contains(&x) {
+                        proptest::prop_assert!((n.iter().sum::<f64>() - 1.0).abs() < 1e-9);
+                    }
+                }
+                let pts: Vec<DVec3> = (0..count).map(|i| DVec3::splat(i as f64)).collect();
+                let c = Curve::new(degree, b.knots.clone(), &pts, None).unwrap();
+                let _ = c.point(t);
+                proptest::prop_assert!(c.sample().len() >= 2);
+            }
+        }
+    }
+
     #[test]
     fn rational_quarter_circle_lies_on_the_circle() {
         let h = std::f64::consts::FRAC_1_SQRT_2;
