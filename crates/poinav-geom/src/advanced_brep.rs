@@ -26,6 +26,7 @@ use crate::mesh::Mesh;
 use crate::polygon;
 use crate::surface::{surface, Surface};
 use crate::triangulation::{newell_normal, restore_skipped, triangulate_2d, triangulate_3d};
+use crate::unit_assignment::Units;
 
 /// How much coarser than the arc rule an inner edge of a curved face may be: a grid cell's
 /// diagonal (cells of [`Surface::grid`] follow the arc rule along u and v).
@@ -43,11 +44,8 @@ pub const MAX_FACE_TRIANGLES: usize = 200_000;
 
 /// The mesh of an `IfcAdvancedBrep` (outer shell and, `...WithVoids`, void shells), metres
 /// (`s` metres per file unit).
-pub fn advanced_brep(item: Entity<'_>, s: f64) -> Result<Mesh, GeomError> {
-    let mut m = Mesher {
-        s,
-        ..Mesher::default()
-    };
+pub fn advanced_brep(item: Entity<'_>, units: &Units) -> Result<Mesh, GeomError> {
+    let mut m = Mesher::new(units);
     let outer = item
         .get_ref("Outer")
         .ok_or_else(|| missing(&item, "Outer"))?;
@@ -78,20 +76,17 @@ pub fn has_face_surfaces(item: Entity<'_>) -> bool {
 }
 
 /// The open mesh of a surface model whose faces lie on surfaces, metres.
-pub fn surface_model(item: Entity<'_>, s: f64) -> Result<Mesh, GeomError> {
-    let mut m = Mesher {
-        s,
-        ..Mesher::default()
-    };
+pub fn surface_model(item: Entity<'_>, units: &Units) -> Result<Mesh, GeomError> {
+    let mut m = Mesher::new(units);
     for shell in [item.get_refs("SbsmBoundary"), item.get_refs("FbsmFaces")].concat() {
         m.shell(shell)?;
     }
     Ok(m.mesh)
 }
 
-#[derive(Default)]
 struct Mesher {
     s: f64,
+    units: Units,
     mesh: Mesh,
     weld: FxHashMap<[u64; 3], u32>,
     edges: FxHashMap<poinav_ifc::EntityId, Vec<DVec3>>,
@@ -105,6 +100,16 @@ struct Loop {
 }
 
 impl Mesher {
+    fn new(units: &Units) -> Mesher {
+        Mesher {
+            s: units.metres_per_unit,
+            units: *units,
+            mesh: Mesh::default(),
+            weld: FxHashMap::default(),
+            edges: FxHashMap::default(),
+        }
+    }
+
     /// Turns the triangles from `from` on inside out when they enclose a negative volume
     /// (`outward`: an outer shell) or a positive one (a void), whichever way the file wrote
     /// the shell.
@@ -212,7 +217,7 @@ impl Mesher {
             return Ok(());
         }
         let surf = match face.get_ref("FaceSurface") {
-            Some(e) => surface(e, self.s)?,
+            Some(e) => surface(e, &self.units)?,
             None if face.is_a("IfcFaceSurface") => return Err(missing(&face, "FaceSurface")),
             None => Surface::Plane,
         };
@@ -906,7 +911,7 @@ mod tests {
             "ISO-10303-21;HEADER;FILE_SCHEMA(('IFC4'));ENDSEC;DATA;\n{data}\nENDSEC;END-ISO-10303-21;"
         );
         let m = Model::from_bytes("t.ifc", text.into_bytes()).unwrap();
-        advanced_brep(m.entity(EntityId(id)).unwrap(), 1.0)
+        advanced_brep(m.entity(EntityId(id)).unwrap(), &Units::SI)
     }
 
     /// Every edge used once each way.
@@ -976,7 +981,7 @@ mod tests {
         let model = Model::from_bytes("t.ifc", text.into_bytes()).unwrap();
         let item = model.entity(EntityId(31)).unwrap();
         assert!(has_face_surfaces(item));
-        let (m, solid) = crate::brep::face_mesh(item, 1.0).unwrap();
+        let (m, solid) = crate::brep::face_mesh(item, &Units::SI).unwrap();
         assert!(!solid && !closed(&m));
         let exact = 2.0 * std::f64::consts::PI * 4.0;
         assert!(
@@ -1007,7 +1012,7 @@ mod tests {
         );
         let unsupported = HEMISPHERE.replace(
             "#12=IFCSPHERICALSURFACE(#4,2.)",
-            "#12=IFCSURFACEOFLINEAREXTRUSION(#30,#4,#2,1.);#30=IFCRECTANGLEPROFILEDEF(.AREA.,$,$,1.,1.)",
+            "#12=IFCSURFACEOFREVOLUTION(#30,#4,#31);#30=IFCRECTANGLEPROFILEDEF(.AREA.,$,$,1.,1.);#31=IFCAXIS1PLACEMENT(#1,#2)",
         );
         let e = mesh_of(&unsupported, 22).unwrap_err();
         assert!(

@@ -175,13 +175,13 @@ impl ItemMesher {
             let mesh = revolved_area_solid(item, &self.units)?;
             self.leaf(&item, mesh, true)
         } else if item.is_a("IfcAdvancedBrep") {
-            let mesh = advanced_brep(item, s)?;
+            let mesh = advanced_brep(item, &self.units)?;
             self.leaf(&item, mesh, true)
         } else if item.is_a("IfcManifoldSolidBrep")
             || item.is_a("IfcFaceBasedSurfaceModel")
             || item.is_a("IfcShellBasedSurfaceModel")
         {
-            let (mesh, solid) = face_mesh(item, s)?;
+            let (mesh, solid) = face_mesh(item, &self.units)?;
             self.leaf(&item, mesh, solid)
         } else if item.is_a("IfcTessellatedFaceSet") {
             let (mesh, closed) = face_set_mesh(item, s)?;

@@ -2,8 +2,10 @@
 //! the inverse for points on them: `IfcPlane`, `IfcCylindricalSurface` (u the angle about
 //! the axis, v the height), `IfcSphericalSurface` (longitude, latitude),
 //! `IfcToroidalSurface` (angle about the axis, angle about the tube) and B-spline surfaces
-//! (rational too, [`crate::bspline`]). Angles are periodic; normals `S_u x S_v` point away
-//! from the axis or centre, as IFC's do.
+//! (rational too, [`crate::bspline`]), and `IfcSurfaceOfLinearExtrusion` of a profile's
+//! curve (u the length along the curve's polyline, v along the sweep). Angles (and closed
+//! swept curves) are periodic; normals `S_u x S_v` point away from the axis or centre, as
+//! IFC's do.
 
 use std::f64::consts::TAU;
 
@@ -15,6 +17,7 @@ use crate::bspline;
 use crate::chord_rule;
 use crate::curve::MAX_ARC_STEP;
 use crate::error::{degenerate, missing, unsupported, GeomError};
+use crate::unit_assignment::Units;
 
 /// A surface an advanced face lies on.
 #[derive(Debug, Clone)]
@@ -46,10 +49,115 @@ pub enum Surface {
     },
     /// A B-spline surface.
     BSpline(Box<bspline::Surface>),
+    /// A curve in the xy plane of `placement` swept along `direction`: u the length along
+    /// the curve's polyline, v the distance along `direction`.
+    Extrusion(Box<Swept>),
 }
 
-/// Reads the `FaceSurface` of an advanced face (`s` metres per file unit).
-pub fn surface(e: Entity<'_>, s: f64) -> Result<Surface, GeomError> {
+/// The curve and direction of an `IfcSurfaceOfLinearExtrusion`.
+#[derive(Debug, Clone)]
+pub struct Swept {
+    /// Local to metres.
+    pub placement: DAffine3,
+    /// The curve's points (metres), as [`crate::curve`] approximates them.
+    pub points: Vec<DVec2>,
+    /// Length along the points up to each point.
+    pub lengths: Vec<f64>,
+    /// Unit direction of the sweep, local, not in the curve's plane.
+    pub direction: DVec3,
+    /// True when the curve closes (u is then periodic).
+    pub closed: bool,
+}
+
+impl Swept {
+    fn total(&self) -> f64 {
+        *self.lengths.last().unwrap_or(&0.0)
+    }
+
+    /// The curve's point at length `u` (clamped, or wrapped when closed).
+    fn at(&self, u: f64) -> DVec2 {
+        let total = self.total();
+        let u = if self.closed && total > 0.0 {
+            u.rem_euclid(total)
+        } else {
+            u.clamp(0.0, total)
+        };
+        let i = self
+            .lengths
+            .partition_point(|&l| l <= u)
+            .clamp(1, self.points.len() - 1);
+        let (l0, l1) = (self.lengths[i - 1], self.lengths[i]);
+        let t = if l1 > l0 { (u - l0) / (l1 - l0) } else { 0.0 };
+        self.points[i - 1].lerp(self.points[i], t)
+    }
+
+    /// The length along the curve of its point nearest `q`.
+    fn length_of(&self, q: DVec2) -> f64 {
+        let mut best = (f64::INFINITY, 0.0);
+        for i in 1..self.points.len() {
+            let (a, b) = (self.points[i - 1], self.points[i]);
+            let d = b - a;
+            let t = ((q - a).dot(d) / d.length_squared().max(1e-300)).clamp(0.0, 1.0);
+            let dist = (a + d * t).distance_squared(q);
+            if dist < best.0 {
+                best = (
+                    dist,
+                    self.lengths[i - 1] + t * (self.lengths[i] - self.lengths[i - 1]),
+                );
+            }
+        }
+        best.1
+    }
+}
+
+/// An `IfcSurfaceOfLinearExtrusion` whose `SweptCurve` is an open or closed arbitrary
+/// profile bounded by a curve [`crate::curve`] reads.
+fn extrusion(e: Entity<'_>, units: &Units) -> Result<Surface, GeomError> {
+    let s = units.metres_per_unit;
+    let profile = e
+        .get_ref("SweptCurve")
+        .ok_or_else(|| missing(&e, "SweptCurve"))?;
+    let curve = profile
+        .get_ref("Curve")
+        .or_else(|| profile.get_ref("OuterCurve"))
+        .ok_or_else(|| unsupported(&profile, "swept curve (an arbitrary profile's curve)"))?;
+    let mut points = crate::curve::polyline(curve, units)?;
+    let closed = points.len() > 2
+        && points[0].distance(points[points.len() - 1]) <= 1e-9 * points[0].length().max(1.0);
+    if profile.is_a("IfcArbitraryClosedProfileDef") && !closed {
+        points.push(points[0]);
+    }
+    let closed = closed || profile.is_a("IfcArbitraryClosedProfileDef");
+    if points.len() < 2 {
+        return Err(degenerate(&e, "swept curve has fewer than two points"));
+    }
+    let mut lengths = vec![0.0];
+    for w in points.windows(2) {
+        lengths.push(lengths.last().expect("starts with 0") + w[0].distance(w[1]));
+    }
+    let placement = match e.get_ref("Position") {
+        Some(p) => axis2placement_3d(p, s)?,
+        None => DAffine3::IDENTITY,
+    };
+    let direction = crate::direction::direction(
+        e.get_ref("ExtrudedDirection")
+            .ok_or_else(|| missing(&e, "ExtrudedDirection"))?,
+    )?;
+    if direction.z.abs() < 1e-9 {
+        return Err(degenerate(&e, "swept along the curve's own plane"));
+    }
+    Ok(Surface::Extrusion(Box::new(Swept {
+        placement,
+        points,
+        lengths,
+        direction,
+        closed,
+    })))
+}
+
+/// Reads the `FaceSurface` of an advanced face.
+pub fn surface(e: Entity<'_>, units: &Units) -> Result<Surface, GeomError> {
+    let s = units.metres_per_unit;
     let placement = || {
         let p = e
             .get_ref("Position")
@@ -84,6 +192,8 @@ pub fn surface(e: Entity<'_>, s: f64) -> Result<Surface, GeomError> {
         })
     } else if e.is_a("IfcBSplineSurfaceWithKnots") {
         Ok(Surface::BSpline(Box::new(bspline::surface(e, s)?)))
+    } else if e.is_a("IfcSurfaceOfLinearExtrusion") {
+        extrusion(e, units)
     } else {
         Err(unsupported(&e, "surface of an advanced face"))
     }
@@ -95,7 +205,8 @@ impl Surface {
         match self {
             Surface::Cylinder { .. } | Surface::Sphere { .. } => [Some(TAU), None],
             Surface::Torus { .. } => [Some(TAU), Some(TAU)],
-            Surface::Plane | Surface::BSpline(_) => [None, None],
+            Surface::Extrusion(x) if x.closed => [Some(x.total()), None],
+            Surface::Plane | Surface::BSpline(_) | Surface::Extrusion(_) => [None, None],
         }
     }
 
@@ -118,7 +229,7 @@ impl Surface {
                 .collect()
         };
         match self {
-            Surface::Plane => [Vec::new(), Vec::new()],
+            Surface::Plane | Surface::Extrusion(_) => [Vec::new(), Vec::new()],
             Surface::Cylinder { .. } => [angles(lo.x, hi.x), Vec::new()],
             Surface::Sphere { .. } | Surface::Torus { .. } => {
                 [angles(lo.x, hi.x), angles(lo.y, hi.y)]
@@ -163,6 +274,9 @@ impl Surface {
                 ))
             }
             Surface::BSpline(b) => b.point(u, v),
+            Surface::Extrusion(x) => x
+                .placement
+                .transform_point3(x.at(u).extend(0.0) + x.direction * v),
         }
     }
 
@@ -194,6 +308,11 @@ impl Surface {
                 Some(DVec2::new(l.y.atan2(l.x), l.z.atan2(rho)))
             }
             Surface::BSpline(b) => Some(project(b, p, near)),
+            Surface::Extrusion(x) => {
+                let l = x.placement.inverse().transform_point3(p);
+                let v = l.z / x.direction.z;
+                Some(DVec2::new(x.length_of((l - x.direction * v).truncate()), v))
+            }
         }?;
         let [pu, pv] = self.periods();
         let wrap = |x: f64, period: Option<f64>, n: Option<f64>| match (period, n) {
