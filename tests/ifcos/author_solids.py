@@ -15,7 +15,8 @@ placed at its own spot, so placements count), all on one storey:
   pyramid above it) and an intersection (block and sphere);
 - advanced breps: a quarter cylinder with an IfcCylindricalSurface face and IfcCircle edges;
   the same with its curved face and arcs as rational B-splines (weights matter), and with
-  its curved face on an IfcSurfaceOfLinearExtrusion of a rational B-spline arc; a box whose
+  its curved face on an IfcSurfaceOfLinearExtrusion of a rational B-spline arc or on an
+  IfcSurfaceOfRevolution of a line; a box whose
   top is a B-spline surface with B-spline edges; a full cylinder whose side face is bounded
   through a seam edge; a box with a box-shaped void (IfcAdvancedBrepWithVoids);
 - an IfcPolygonalFaceSet with IfcIndexedPolygonalFaceWithVoids (a square tube);
@@ -225,10 +226,10 @@ def bspline_curve(points, weights=None):
     )
 
 
-def quarter_cylinder(rational, extrusion=False):
+def quarter_cylinder(rational, extrusion=False, revolution=False):
     """r = 1, h = 2 about z, in x >= 0, y >= 0; the curved face on a cylinder, a rational
-    B-spline surface, or (`extrusion`) a surface of linear extrusion of a rational B-spline
-    quarter circle."""
+    B-spline surface, a surface of linear extrusion of a rational B-spline quarter circle
+    (`extrusion`), or a surface of revolution of a line about z (`revolution`)."""
     b = Brep()
     for z, s in [(0, "0"), (2, "1")]:
         b.vertex("O" + s, 0, 0, z)
@@ -251,6 +252,11 @@ def quarter_cylinder(rational, extrusion=False):
             2, 1, rows, "UNSPECIFIED", False, False, False, [3, 3], [2, 2], [0.0, 1.0], [0.0, 1.0],
             "UNSPECIFIED", [[1.0, 1.0], [W, W], [1.0, 1.0]],
         )
+    elif revolution:
+        line = f.createIfcArbitraryOpenProfileDef("CURVE", None, f.createIfcPolyline([pt(1, 0), pt(1, 2)]))
+        curved = f.createIfcSurfaceOfRevolution(
+            line, ax3(axis=(0, -1, 0), ref=(1, 0, 0)), f.createIfcAxis1Placement(pt(0, 0, 0), d3(0, 1, 0))
+        )
     elif extrusion:
         arc = f.createIfcRationalBSplineCurveWithKnots(
             2, [pt(1, 0), pt(1, 1), pt(0, 1)], "CIRCULAR_ARC", False, False, [3, 3], [0.0, 1.0],
@@ -272,6 +278,12 @@ def quarter_cylinder(rational, extrusion=False):
 
 case("advanced quarter cylinder", [quarter_cylinder(False)], "AdvancedBrep", volume=math.pi / 2)
 case("advanced rational quarter cylinder", [quarter_cylinder(True)], "AdvancedBrep", volume=math.pi / 2)
+case(
+    "advanced revolution quarter cylinder",
+    [quarter_cylinder(False, revolution=True)],
+    "AdvancedBrep",
+    volume=math.pi / 2,
+)
 case(
     "advanced extrusion quarter cylinder",
     [quarter_cylinder(False, extrusion=True)],

@@ -1012,7 +1012,7 @@ mod tests {
         );
         let unsupported = HEMISPHERE.replace(
             "#12=IFCSPHERICALSURFACE(#4,2.)",
-            "#12=IFCSURFACEOFREVOLUTION(#30,#4,#31);#30=IFCRECTANGLEPROFILEDEF(.AREA.,$,$,1.,1.);#31=IFCAXIS1PLACEMENT(#1,#2)",
+            "#12=IFCCURVEBOUNDEDPLANE(#19,#7,())",
         );
         let e = mesh_of(&unsupported, 22).unwrap_err();
         assert!(

@@ -2,8 +2,9 @@
 //! the inverse for points on them: `IfcPlane`, `IfcCylindricalSurface` (u the angle about
 //! the axis, v the height), `IfcSphericalSurface` (longitude, latitude),
 //! `IfcToroidalSurface` (angle about the axis, angle about the tube) and B-spline surfaces
-//! (rational too, [`crate::bspline`]), and `IfcSurfaceOfLinearExtrusion` of a profile's
-//! curve (u the length along the curve's polyline, v along the sweep). Angles (and closed
+//! (rational too, [`crate::bspline`]), `IfcSurfaceOfLinearExtrusion` of a profile's curve
+//! (u the length along the curve's polyline, v along the sweep) and `IfcSurfaceOfRevolution`
+//! (u the angle, v the length along the curve). Angles (and closed
 //! swept curves) are periodic; normals `S_u x S_v` point away from the axis or centre, as
 //! IFC's do.
 
@@ -52,6 +53,10 @@ pub enum Surface {
     /// A curve in the xy plane of `placement` swept along `direction`: u the length along
     /// the curve's polyline, v the distance along `direction`.
     Extrusion(Box<Swept>),
+    /// A curve in the xy plane of `placement` turned about the line through the origin
+    /// point along `direction` (both in that plane): u the angle, v the length along the
+    /// curve; the unit vector is the side of the axis the curve lies on.
+    Revolution(Box<(Swept, DVec3, DVec3)>),
 }
 
 /// The curve and direction of an `IfcSurfaceOfLinearExtrusion`.
@@ -63,7 +68,7 @@ pub struct Swept {
     pub points: Vec<DVec2>,
     /// Length along the points up to each point.
     pub lengths: Vec<f64>,
-    /// Unit direction of the sweep, local, not in the curve's plane.
+    /// Unit direction of the sweep (the axis of a revolution), local.
     pub direction: DVec3,
     /// True when the curve closes (u is then periodic).
     pub closed: bool,
@@ -113,6 +118,48 @@ impl Swept {
 /// An `IfcSurfaceOfLinearExtrusion` whose `SweptCurve` is an open or closed arbitrary
 /// profile bounded by a curve [`crate::curve`] reads.
 fn extrusion(e: Entity<'_>, units: &Units) -> Result<Surface, GeomError> {
+    let direction = crate::direction::direction(
+        e.get_ref("ExtrudedDirection")
+            .ok_or_else(|| missing(&e, "ExtrudedDirection"))?,
+    )?;
+    if direction.z.abs() < 1e-9 {
+        return Err(degenerate(&e, "swept along the curve's own plane"));
+    }
+    Ok(Surface::Extrusion(Box::new(swept_curve(
+        e, units, direction,
+    )?)))
+}
+
+/// An `IfcSurfaceOfRevolution`: its `SweptCurve` (as for extrusions) turned about its
+/// `AxisPosition`, which lies in the curve's plane.
+fn revolution(e: Entity<'_>, units: &Units) -> Result<Surface, GeomError> {
+    let axis = e
+        .get_ref("AxisPosition")
+        .ok_or_else(|| missing(&e, "AxisPosition"))?;
+    let origin = crate::cartesian_point::point3(
+        axis.get_ref("Location")
+            .ok_or_else(|| missing(&axis, "Location"))?,
+    )? * units.metres_per_unit;
+    let direction = match axis.get_ref("Axis") {
+        Some(d) => crate::direction::direction(d)?,
+        None => DVec3::Z,
+    };
+    if direction.z.abs() > 1e-9 || origin.z.abs() > 1e-9 * origin.length().max(1.0) {
+        return Err(unsupported(
+            &e,
+            "surface of revolution about an axis off the curve's plane",
+        ));
+    }
+    let curve = swept_curve(e, units, direction)?;
+    // The side of the axis the curve lies on.
+    let side = DVec3::Z.cross(direction);
+    let mid = curve.at(curve.total() / 2.0).extend(0.0) - origin;
+    let side = if mid.dot(side) < 0.0 { -side } else { side };
+    Ok(Surface::Revolution(Box::new((curve, origin, side))))
+}
+
+/// The curve of a swept surface's `SweptCurve`, with the surface's placement.
+fn swept_curve(e: Entity<'_>, units: &Units, direction: DVec3) -> Result<Swept, GeomError> {
     let s = units.metres_per_unit;
     let profile = e
         .get_ref("SweptCurve")
@@ -139,20 +186,13 @@ fn extrusion(e: Entity<'_>, units: &Units) -> Result<Surface, GeomError> {
         Some(p) => axis2placement_3d(p, s)?,
         None => DAffine3::IDENTITY,
     };
-    let direction = crate::direction::direction(
-        e.get_ref("ExtrudedDirection")
-            .ok_or_else(|| missing(&e, "ExtrudedDirection"))?,
-    )?;
-    if direction.z.abs() < 1e-9 {
-        return Err(degenerate(&e, "swept along the curve's own plane"));
-    }
-    Ok(Surface::Extrusion(Box::new(Swept {
+    Ok(Swept {
         placement,
         points,
         lengths,
         direction,
         closed,
-    })))
+    })
 }
 
 /// Reads the `FaceSurface` of an advanced face.
@@ -194,6 +234,8 @@ pub fn surface(e: Entity<'_>, units: &Units) -> Result<Surface, GeomError> {
         Ok(Surface::BSpline(Box::new(bspline::surface(e, s)?)))
     } else if e.is_a("IfcSurfaceOfLinearExtrusion") {
         extrusion(e, units)
+    } else if e.is_a("IfcSurfaceOfRevolution") {
+        revolution(e, units)
     } else {
         Err(unsupported(&e, "surface of an advanced face"))
     }
@@ -206,6 +248,8 @@ impl Surface {
             Surface::Cylinder { .. } | Surface::Sphere { .. } => [Some(TAU), None],
             Surface::Torus { .. } => [Some(TAU), Some(TAU)],
             Surface::Extrusion(x) if x.closed => [Some(x.total()), None],
+            Surface::Revolution(r) if r.0.closed => [Some(TAU), Some(r.0.total())],
+            Surface::Revolution(_) => [Some(TAU), None],
             Surface::Plane | Surface::BSpline(_) | Surface::Extrusion(_) => [None, None],
         }
     }
@@ -229,7 +273,9 @@ impl Surface {
                 .collect()
         };
         match self {
-            Surface::Plane | Surface::Extrusion(_) => [Vec::new(), Vec::new()],
+            Surface::Plane | Surface::Extrusion(_) | Surface::Revolution(_) => {
+                [Vec::new(), Vec::new()]
+            }
             Surface::Cylinder { .. } => [angles(lo.x, hi.x), Vec::new()],
             Surface::Sphere { .. } | Surface::Torus { .. } => {
                 [angles(lo.x, hi.x), angles(lo.y, hi.y)]
@@ -277,6 +323,15 @@ impl Surface {
             Surface::Extrusion(x) => x
                 .placement
                 .transform_point3(x.at(u).extend(0.0) + x.direction * v),
+            Surface::Revolution(r) => {
+                let (curve, origin, _) = &**r;
+                let a = curve.direction;
+                let w = curve.at(v).extend(0.0) - *origin;
+                let along = a * a.dot(w);
+                let perp = w - along;
+                let turned = *origin + along + perp * u.cos() + a.cross(perp) * u.sin();
+                curve.placement.transform_point3(turned)
+            }
         }
     }
 
@@ -312,6 +367,18 @@ impl Surface {
                 let l = x.placement.inverse().transform_point3(p);
                 let v = l.z / x.direction.z;
                 Some(DVec2::new(x.length_of((l - x.direction * v).truncate()), v))
+            }
+            Surface::Revolution(r) => {
+                let (curve, origin, side) = &**r;
+                let a = curve.direction;
+                let w = curve.placement.inverse().transform_point3(p) - *origin;
+                let h = a.dot(w);
+                let perp = w - a * h;
+                let rho = perp.length();
+                // The curve's point at the same height and distance from the axis.
+                let q = *origin + a * h + *side * rho;
+                let u = a.cross(*side).dot(perp).atan2(side.dot(perp));
+                Some(DVec2::new(u, curve.length_of(q.truncate())))
             }
         }?;
         let [pu, pv] = self.periods();
@@ -400,6 +467,32 @@ mod tests {
                 minor: 1.0,
             },
         ];
+        let line = |direction| Swept {
+            placement,
+            points: vec![
+                DVec2::new(1.0, 0.0),
+                DVec2::new(1.5, 2.0),
+                DVec2::new(1.2, 3.0),
+            ],
+            lengths: vec![0.0, 4.25f64.sqrt(), 4.25f64.sqrt() + 1.09f64.sqrt()],
+            direction,
+            closed: false,
+        };
+        let swept = [
+            Surface::Extrusion(Box::new(line(DVec3::new(0.2, 0.0, 1.0).normalize()))),
+            Surface::Revolution(Box::new((line(DVec3::Y), DVec3::ZERO, DVec3::X))),
+        ];
+        for s in &swept {
+            for uv in [
+                DVec2::new(0.3, 0.2),
+                DVec2::new(-2.0, 1.0),
+                DVec2::new(2.5, 2.9),
+            ] {
+                let p = s.point(uv);
+                let back = s.parameters(p, Some(uv)).unwrap();
+                assert!((s.point(back) - p).length() < 1e-9, "{s:?} {uv} {back}");
+            }
+        }
         for s in &surfaces {
             for uv in [
                 DVec2::new(0.3, 0.2),
