@@ -74,6 +74,7 @@ pub mod surface_style;
 pub mod tapered_extrusion;
 pub mod triangulation;
 mod unit_assignment;
+pub mod uv_mesh;
 pub mod walking_slope;
 pub mod winding_chain;
 
