@@ -115,7 +115,8 @@ impl Mesher {
     }
 
     fn vertex(&mut self, p: DVec3) -> u32 {
-        let key = p.to_array().map(f64::to_bits);
+        // + 0.0 makes -0.0 and 0.0 one key.
+        let key = p.to_array().map(|x| (x + 0.0).to_bits());
         *self.weld.entry(key).or_insert_with(|| {
             self.mesh.positions.push(p);
             self.mesh.positions.len() as u32 - 1
