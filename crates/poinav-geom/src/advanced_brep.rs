@@ -176,6 +176,9 @@ impl Mesher {
                     pts.push(p);
                 }
             }
+        } else if lp.is_a("IfcVertexLoop") {
+            // A loop of one vertex (a cone's apex) bounds nothing.
+            return Ok(Vec::new());
         } else {
             return Err(unsupported(&lp, "face loop"));
         }
@@ -598,7 +601,7 @@ mod tests {
         );
         let unsupported = HEMISPHERE.replace(
             "#12=IFCSPHERICALSURFACE(#4,2.)",
-            "#12=IFCCURVEBOUNDEDPLANE(#19,#7,())",
+            "#12=IFCCARTESIANPOINT((0.,0.,0.))",
         );
         let e = mesh_of(&unsupported, 22).unwrap_err();
         assert!(

@@ -195,8 +195,23 @@ fn swept_curve(e: Entity<'_>, units: &Units, direction: DVec3) -> Result<Swept, 
     })
 }
 
-/// Reads the `FaceSurface` of an advanced face.
+/// Reads the `FaceSurface` of an advanced face (of a curve-bounded or trimmed surface, its
+/// basis surface).
 pub fn surface(e: Entity<'_>, units: &Units) -> Result<Surface, GeomError> {
+    // Bounded and trimmed surfaces: the face's own bounds trim it, the basis surface is what
+    // counts (followed a few levels at most).
+    let mut e = e;
+    for _ in 0..4 {
+        if !(e.is_a("IfcCurveBoundedPlane")
+            || e.is_a("IfcCurveBoundedSurface")
+            || e.is_a("IfcRectangularTrimmedSurface"))
+        {
+            break;
+        }
+        e = e
+            .get_ref("BasisSurface")
+            .ok_or_else(|| missing(&e, "BasisSurface"))?;
+    }
     let s = units.metres_per_unit;
     let placement = || {
         let p = e
