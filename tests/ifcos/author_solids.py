@@ -18,7 +18,8 @@ placed at its own spot, so placements count), all on one storey:
   its curved face on an IfcSurfaceOfLinearExtrusion of a rational B-spline arc or on an
   IfcSurfaceOfRevolution of a line; a box whose
   top is a B-spline surface with B-spline edges; a full cylinder whose side face is bounded
-  through a seam edge; a box with a box-shaped void (IfcAdvancedBrepWithVoids);
+  through a seam edge; a torus bounded by its two seams; a box with a box-shaped void
+  (IfcAdvancedBrepWithVoids);
 - an IfcPolygonalFaceSet with IfcIndexedPolygonalFaceWithVoids (a square tube);
 - an extruded profile bounded by a closed rational B-spline circle.
 
@@ -346,6 +347,20 @@ def seam_cylinder():
 
 
 case("advanced seam cylinder", [seam_cylinder()], "AdvancedBrep", volume=math.pi * 0.25 * 1.2)
+
+
+def torus():
+    """R = 1, r = 0.3: one toroidal face bounded by its two seam circles, each run both ways."""
+    b = Brep()
+    b.vertex("V", 1.3, 0, 0)
+    b.edge("outer", "V", "V", circle(0, 1.3))
+    tube = f.createIfcCircle(ax3(1.0, 0, 0, axis=(0, -1, 0), ref=(1, 0, 0)), 0.3)
+    b.edge("tube", "V", "V", tube)
+    surface = f.createIfcToroidalSurface(ax3(), 1.0, 0.3)
+    return f.createIfcAdvancedBrep(f.createIfcClosedShell([b.face(surface, ["outer", "tube", "-outer", "-tube"])]))
+
+
+case("advanced torus", [torus()], "AdvancedBrep", volume=2 * math.pi**2 * 1.0 * 0.3**2)
 
 
 def box_shell(x0, y0, z0, x1, y1, z1, inward=False):
