@@ -12,6 +12,7 @@ use crate::cartesian_point::point3;
 use crate::error::{missing, unsupported, GeomError};
 use crate::mesh::Mesh;
 use crate::triangulation::{newell_normal, triangulate_3d};
+use crate::unit_assignment::Units;
 
 /// Most faces one product's breps may have.
 pub const MAX_FACES: usize = 2_000_000;
@@ -128,9 +129,14 @@ impl FaceMesher {
 }
 
 /// The mesh of an `IfcFacetedBrep` (outer shell and, for `...WithVoids`, the void shells),
-/// an `IfcShellBasedSurfaceModel` or an `IfcFaceBasedSurfaceModel`, in metres; true when it
-/// is a solid (a brep) rather than a surface model.
-pub fn face_mesh(item: Entity<'_>, s: f64) -> Result<(Mesh, bool), GeomError> {
+/// an `IfcShellBasedSurfaceModel` or an `IfcFaceBasedSurfaceModel` (faces on surfaces by
+/// [`crate::advanced_brep::surface_model`]), in metres; true when it is a solid (a brep)
+/// rather than a surface model.
+pub fn face_mesh(item: Entity<'_>, units: &Units) -> Result<(Mesh, bool), GeomError> {
+    if !item.is_a("IfcManifoldSolidBrep") && crate::advanced_brep::has_face_surfaces(item) {
+        return Ok((crate::advanced_brep::surface_model(item, units)?, false));
+    }
+    let s = units.metres_per_unit;
     let mut m = FaceMesher::default();
     let solid = if item.is_a("IfcManifoldSolidBrep") {
         if !item.is_a("IfcFacetedBrep") {

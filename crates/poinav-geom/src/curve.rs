@@ -1,8 +1,8 @@
 //! `IfcCurve` as a 2D polyline in metres: `IfcPolyline`, `IfcIndexedPolyCurve` (line and arc
 //! segments), `IfcCompositeCurve`, `IfcTrimmedCurve` of a circle, ellipse, line or polyline,
-//! and whole `IfcCircle` / `IfcEllipse` (indexed poly curves, conics and trimmed polylines
-//! read by [`crate::curve3d`], z dropped). Arcs are approximated by chords (see
-//! [`MAX_ARC_STEP`]).
+//! whole `IfcCircle` / `IfcEllipse` (indexed poly curves, conics and trimmed polylines read by
+//! [`crate::curve3d`], z dropped) and B-spline curves ([`crate::bspline`]). Arcs are
+//! approximated by chords (see [`MAX_ARC_STEP`]).
 
 use std::f64::consts::TAU;
 
@@ -77,6 +77,9 @@ fn points(curve: Entity<'_>, units: &Units, depth: usize) -> Result<Vec<DVec2>, 
         trimmed_curve(curve, units)
     } else if curve.is_a("IfcCircle") || curve.is_a("IfcEllipse") {
         Ok(flat(&crate::curve3d::path(curve, units)?))
+    } else if curve.is_a("IfcBSplineCurveWithKnots") {
+        let c = crate::bspline::curve(curve, s)?;
+        Ok(c.sample().into_iter().map(|p| p.truncate()).collect())
     } else {
         Err(unsupported(&curve, "curve"))
     }

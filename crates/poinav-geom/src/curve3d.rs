@@ -2,7 +2,8 @@
 //! directrices of swept solids. Reads `IfcPolyline`, `IfcIndexedPolyCurve` (line and arc
 //! segments, 2D or 3D points), `IfcCompositeCurve` (segments with `SameSense`, nested),
 //! `IfcTrimmedCurve` of an `IfcCircle`, `IfcEllipse`, `IfcLine` or `IfcPolyline` (trimmed by
-//! parameter or by point), and whole `IfcCircle` / `IfcEllipse`; [`Path::trimmed`] cuts a
+//! parameter or by point), whole `IfcCircle` / `IfcEllipse` and B-spline curves (rational
+//! too, [`crate::bspline`]); [`Path::trimmed`] cuts a
 //! path between two parameters (`StartParam` / `EndParam`). Arcs are chorded by the crate's
 //! rule, [`crate::curve::MAX_ARC_STEP`].
 //!
@@ -10,7 +11,7 @@
 //! parameter is the distance along it over its vector's magnitude; a conic's is the angle in
 //! the file's angle unit; an indexed poly curve counts one per line piece or arc; a trimmed
 //! curve keeps its basis curve's; a composite curve adds up the parameter spans of its
-//! segments in order.
+//! segments in order; a B-spline curve's is its knots'.
 
 use std::f64::consts::TAU;
 
@@ -199,6 +200,13 @@ fn read(curve: Entity<'_>, units: &Units, depth: usize) -> Result<Path, GeomErro
         out = trimmed_curve(curve, units, depth)?;
     } else if curve.is_a("IfcCircle") || curve.is_a("IfcEllipse") {
         out = Conic::read(curve, units)?.arc(0.0, TAU, units.radians_per_unit);
+    } else if curve.is_a("IfcBSplineCurveWithKnots") {
+        // Rational ones too; the parameter is the curve's own (its knots' values).
+        let c = crate::bspline::curve(curve, s)?;
+        let (lo, hi) = c.basis.domain();
+        for (u, p) in c.sample_with_parameters(lo, hi) {
+            out.push(p, u);
+        }
     } else {
         return Err(unsupported(&curve, "curve"));
     }
@@ -473,6 +481,29 @@ mod tests {
         let end = *t.points.last().unwrap();
         let h = std::f64::consts::FRAC_1_SQRT_2;
         assert!(end.distance(DVec3::new(h, h, 2.0)) < 1e-12, "{end}");
+    }
+
+    #[test]
+    fn a_rational_b_spline_directrix_is_a_quarter_circle_with_its_knot_parameters() {
+        // Degree 2, weights 1, sqrt(1/2), 1: the quarter circle of radius 2 from (2,0,1) to
+        // (0,2,1); knots 0 and 3 with multiplicity 3.
+        let m = model(
+            "#1=IFCCARTESIANPOINT((2.,0.,1.));#2=IFCCARTESIANPOINT((2.,2.,1.));\
+             #3=IFCCARTESIANPOINT((0.,2.,1.));\
+             #4=IFCRATIONALBSPLINECURVEWITHKNOTS(2,(#1,#2,#3),.CIRCULAR_ARC.,.F.,.F.,(3,3),\
+             (0.,3.),.UNSPECIFIED.,(1.,0.7071067811865476,1.));",
+        );
+        let p = path(m.entity(EntityId(4)).unwrap(), &Units::SI).unwrap();
+        assert!(p.points.len() >= 18, "{} points", p.points.len());
+        for q in &p.points {
+            assert!((q.truncate().length() - 2.0).abs() < 1e-9, "{q}");
+            assert!((q.z - 1.0).abs() < 1e-12);
+        }
+        assert_eq!(p.params.first(), Some(&0.0));
+        assert_eq!(p.params.last(), Some(&3.0));
+        assert!(p.params.windows(2).all(|w| w[1] > w[0]));
+        let t = p.trimmed(Some(0.0), Some(1.5));
+        assert!((t.points.last().unwrap().truncate() - DVec2::splat(2f64.sqrt())).length() < 5e-3);
     }
 
     #[test]

@@ -33,16 +33,21 @@
 //! assert!((f.elongation() - 4.0 / 3.0).abs() < 1e-9);
 //! ```
 
+pub mod advanced_brep;
 mod axis2_placement;
 pub mod boolean;
 pub mod brep;
+pub mod bspline;
 pub mod cartesian_point;
 pub mod cartesian_transformation_operator;
+pub mod chord_rule;
+pub mod csg_primitive;
 pub mod curve;
 pub mod curve3d;
 pub mod direction;
 pub mod door;
 pub mod door_passage;
+pub mod edge_curve;
 pub mod element_mesh;
 mod error;
 pub mod extrusion;
@@ -51,6 +56,7 @@ pub mod floor_level;
 pub mod floor_plan;
 pub mod footprint;
 pub mod half_space;
+pub mod loft;
 pub mod mesh;
 pub mod open_profile;
 mod parameterized_profile;
@@ -63,13 +69,17 @@ pub mod progress;
 pub mod region;
 pub mod representation;
 pub mod representation_mesh;
+pub mod revolve;
 pub mod section;
+pub mod surface;
 pub mod surface_style;
 pub mod sweep;
 pub mod swept_area;
 pub mod swept_disk;
+pub mod tapered_extrusion;
 pub mod triangulation;
 mod unit_assignment;
+pub mod uv_mesh;
 pub mod walking_slope;
 pub mod winding_chain;
 

@@ -1,8 +1,8 @@
 //! The items of an `IfcShapeRepresentation` as triangle meshes in the representation's
-//! coordinates (metres): extrusions (of open profiles too: surfaces), swept disks and areas
-//! swept along a directrix, faceted breps, surface models, tessellated face sets, boxes and
-//! CSG primitives, boolean results (clipping by half-spaces, differences, unions and
-//! intersections of solids) and mapped items (nested, with any
+//! coordinates (metres): extrusions (tapered too; of open profiles: surfaces), revolutions,
+//! swept disks and areas swept along a directrix, faceted and advanced breps, surface models,
+//! tessellated face sets, boxes and CSG primitives, boolean results (clipping by half-spaces,
+//! differences, unions and intersections of solids) and mapped items (nested, with any
 //! `IfcCartesianTransformationOperator`, mirrored or non-uniformly scaled).
 //!
 //! Work is bounded: at most [`MAX_ITEMS`] items and [`MAX_TRIANGLES`] triangles per
@@ -14,11 +14,13 @@ use std::time::Instant;
 use glam::{DAffine3, DVec2, DVec3};
 use poinav_ifc::Entity;
 
+use crate::advanced_brep::advanced_brep;
 use crate::axis2_placement::{axis2placement, axis2placement_3d};
 use crate::boolean::{boxes_overlap, clip, Solid};
 use crate::brep::face_mesh;
 use crate::cartesian_point::point3;
 use crate::cartesian_transformation_operator::transformation;
+use crate::csg_primitive::csg_primitive;
 use crate::error::{degenerate, missing, required_ref, unsupported, GeomError};
 use crate::extrusion::{extrude, extruded_area_solid};
 use crate::face_set::face_set_mesh;
@@ -27,9 +29,11 @@ use crate::mesh::Mesh;
 use crate::open_profile::{extruded_open_profile, is_open_profile_extrusion};
 use crate::parameterized_profile::ellipse;
 use crate::profile::ProfileArea;
+use crate::revolve::revolved_area_solid;
 use crate::surface_style::item_colour;
 use crate::swept_area::{directrix_swept_area_solid, is_directrix_swept_area_solid};
 use crate::swept_disk::swept_disk_solid;
+use crate::tapered_extrusion::tapered_extrusion;
 use crate::unit_assignment::Units;
 
 /// Deepest nesting of mapped items, CSG trees and boolean operands followed.
@@ -166,7 +170,8 @@ impl ItemMesher {
             self.item(root, depth + 1)
         } else if item.is_a("IfcExtrudedAreaSolid") {
             if item.is_a("IfcExtrudedAreaSolidTapered") {
-                return Err(unsupported(&item, "tapered extrusion"));
+                let mesh = tapered_extrusion(item, &self.units)?;
+                return self.leaf(&item, mesh, true);
             }
             match extruded_area_solid(item, &self.units) {
                 Ok(mesh) => self.leaf(&item, mesh, true),
@@ -177,17 +182,23 @@ impl ItemMesher {
                 }
                 Err(e) => Err(e),
             }
+        } else if item.is_a("IfcRevolvedAreaSolid") {
+            let mesh = revolved_area_solid(item, &self.units)?;
+            self.leaf(&item, mesh, true)
         } else if item.is_a("IfcSweptDiskSolid") {
             let mesh = swept_disk_solid(item, &self.units)?;
             self.leaf(&item, mesh, true)
         } else if is_directrix_swept_area_solid(&item) {
             let mesh = directrix_swept_area_solid(item, &self.units)?;
             self.leaf(&item, mesh, true)
+        } else if item.is_a("IfcAdvancedBrep") {
+            let mesh = advanced_brep(item, &self.units)?;
+            self.leaf(&item, mesh, true)
         } else if item.is_a("IfcManifoldSolidBrep")
             || item.is_a("IfcFaceBasedSurfaceModel")
             || item.is_a("IfcShellBasedSurfaceModel")
         {
-            let (mesh, solid) = face_mesh(item, s)?;
+            let (mesh, solid) = face_mesh(item, &self.units)?;
             self.leaf(&item, mesh, solid)
         } else if item.is_a("IfcTessellatedFaceSet") {
             let (mesh, closed) = face_set_mesh(item, s)?;
@@ -210,6 +221,13 @@ impl ItemMesher {
             };
             let mut mesh = extrude(&[area], DVec3::Z * h)
                 .ok_or_else(|| degenerate(&item, "cylinder cannot be meshed"))?;
+            mesh.transform(&self.position(&item)?);
+            self.leaf(&item, mesh, true)
+        } else if item.is_a("IfcSphere")
+            || item.is_a("IfcRightCircularCone")
+            || item.is_a("IfcRectangularPyramid")
+        {
+            let mut mesh = csg_primitive(item, s)?;
             mesh.transform(&self.position(&item)?);
             self.leaf(&item, mesh, true)
         } else if item.is_a("IfcCurve")

@@ -95,6 +95,80 @@ pub fn triangulate_3d(outer: &[DVec3], holes: &[Vec<DVec3>]) -> Option<Vec<[u32;
     triangulate_2d(&outer2, &holes2)
 }
 
+/// Puts back into `tris` the boundary points the ear clipper left out (it drops points that
+/// lie on a straight line between their neighbours): each run of left-out points of a ring
+/// (`ring_lengths` give the rings in index order) becomes a fan in the triangle that spans
+/// it, so that a neighbouring face sharing those points meets this one without cracks.
+pub fn restore_skipped(tris: &mut Vec<[u32; 3]>, ring_lengths: &[usize]) {
+    let n: usize = ring_lengths.iter().sum();
+    let mut used = vec![false; n];
+    for t in tris.iter() {
+        for &i in t {
+            if let Some(u) = used.get_mut(i as usize) {
+                *u = true;
+            }
+        }
+    }
+    if used.iter().all(|&u| u) {
+        return;
+    }
+    let mut start = 0;
+    for &len in ring_lengths {
+        let ring: Vec<u32> = (start..start + len).map(|i| i as u32).collect();
+        start += len;
+        let Some(first) = (0..len).find(|&k| used[ring[k] as usize]) else {
+            continue;
+        };
+        // Walk the ring from a used point; collect runs of unused points between used ones.
+        let mut k = first;
+        for _ in 0..len {
+            let a = ring[k];
+            let mut run = Vec::new();
+            let mut j = (k + 1) % len;
+            while !used[ring[j] as usize] {
+                run.push(ring[j]);
+                j = (j + 1) % len;
+            }
+            let b = ring[j];
+            if !run.is_empty() {
+                fan_in(tris, a, b, &run);
+            }
+            k = j;
+            if k == first {
+                break;
+            }
+        }
+    }
+}
+
+/// Replaces the triangle with edge a-b by a fan through `run` (the points between a and b).
+fn fan_in(tris: &mut Vec<[u32; 3]>, a: u32, b: u32, run: &[u32]) {
+    for ti in 0..tris.len() {
+        let t = tris[ti];
+        for k in 0..3 {
+            let (x, y, c) = (t[k], t[(k + 1) % 3], t[(k + 2) % 3]);
+            let chain: Vec<u32> = if (x, y) == (a, b) {
+                std::iter::once(a)
+                    .chain(run.iter().copied())
+                    .chain([b])
+                    .collect()
+            } else if (x, y) == (b, a) {
+                std::iter::once(b)
+                    .chain(run.iter().rev().copied())
+                    .chain([a])
+                    .collect()
+            } else {
+                continue;
+            };
+            tris[ti] = [chain[0], chain[1], c];
+            for w in chain[1..].windows(2) {
+                tris.push([w[0], w[1], c]);
+            }
+            return;
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -126,6 +200,36 @@ mod tests {
         let all: Vec<DVec2> = outer.iter().chain(&hole).copied().collect();
         assert_eq!(tris.len(), 8);
         assert!((area(&all, &tris) - 15.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn points_on_straight_runs_are_kept() {
+        // A 4 x 1 rectangle with three extra points on its bottom edge and one on its top.
+        let outer: Vec<DVec2> = [
+            (0., 0.),
+            (1., 0.),
+            (2., 0.),
+            (3., 0.),
+            (4., 0.),
+            (4., 1.),
+            (2., 1.),
+            (0., 1.),
+        ]
+        .iter()
+        .map(|&(x, y)| DVec2::new(x, y))
+        .collect();
+        // As the ear clipper may leave them out: one triangle over the whole bottom edge.
+        let mut tris = vec![[0, 4, 5], [0, 5, 7]];
+        restore_skipped(&mut tris, &[outer.len()]);
+        let mut used: Vec<u32> = tris.iter().flatten().copied().collect();
+        used.sort();
+        used.dedup();
+        assert_eq!(used, (0..8).collect::<Vec<u32>>());
+        assert!((area(&outer, &tris) - 4.0).abs() < 1e-12);
+        assert!(tris.iter().all(|t| {
+            let [a, b, c] = t.map(|i| outer[i as usize]);
+            (b - a).perp_dot(c - a) > 0.0
+        }));
     }
 
     #[test]
