@@ -211,8 +211,9 @@ impl World {
     fn cell_of(&self, p: DVec2) -> (usize, usize) {
         let q = (p - self.lo) / self.cell;
         (
-            (q.x.floor().max(0.0) as usize).min(self.nx - 1),
-            (q.y.floor().max(0.0) as usize).min(self.ny - 1),
+            // Truncation is the floor here: negatives (and NaN) become cell 0 either way.
+            (q.x.max(0.0) as usize).min(self.nx - 1),
+            (q.y.max(0.0) as usize).min(self.ny - 1),
         )
     }
 
@@ -230,9 +231,14 @@ impl World {
     pub fn set_robots(&mut self, boxes: &[Obb]) {
         self.boxes.clear();
         self.boxes.extend_from_slice(boxes);
+        self.refresh_robots();
+    }
+
+    /// Rebuilds the robots' grid from their current boxes (those [`World::update_robot`] set).
+    pub fn refresh_robots(&mut self) {
         let mut pairs = std::mem::take(&mut self.robot_pairs);
         pairs.clear();
-        for (i, b) in boxes.iter().enumerate() {
+        for (i, b) in self.boxes.iter().enumerate() {
             let (lo, hi) = b.aabb();
             self.cover(lo, hi, |c| pairs.push((c, i as u32)));
         }
@@ -404,10 +410,17 @@ impl World {
         }
     }
 
-    /// Static edges (as `(a, b, obstacle)`) whose cells overlap the box `lo`-`hi`, each once.
-    pub fn segments_near(&self, lo: DVec2, hi: DVec2, out: &mut Vec<(DVec2, DVec2, u32)>) {
+    /// Static edges (as `(a, b, obstacle)`) whose cells overlap the box `lo`-`hi`, each once;
+    /// `ids` is scratch space (kept between calls, it saves an allocation per query).
+    pub fn segments_near(
+        &self,
+        lo: DVec2,
+        hi: DVec2,
+        ids: &mut Vec<u32>,
+        out: &mut Vec<(DVec2, DVec2, u32)>,
+    ) {
         out.clear();
-        let mut ids: Vec<u32> = Vec::new();
+        ids.clear();
         self.cover(lo, hi, |c| {
             ids.extend(
                 self.statics
@@ -422,6 +435,23 @@ impl World {
             let s = &self.segs[i as usize];
             (s.a, s.b, s.owner)
         }));
+    }
+
+    /// True when `f` is true for some robot whose (slack-widened) cells overlap `lo`-`hi`;
+    /// robots are offered cell by cell, one spanning several cells more than once, and the
+    /// search stops at the first true.
+    pub fn any_robot_near(&self, lo: DVec2, hi: DVec2, f: &mut dyn FnMut(u32) -> bool) -> bool {
+        let s = DVec2::splat(self.slack);
+        let (x0, y0) = self.cell_of(lo - s);
+        let (x1, y1) = self.cell_of(hi + s);
+        for y in y0..=y1 {
+            for x in x0..=x1 {
+                if self.robots.cell(y * self.nx + x).iter().any(|&r| f(r)) {
+                    return true;
+                }
+            }
+        }
+        false
     }
 
     /// Robots other than `skip` whose (slack-widened) cells overlap `lo`-`hi`, ascending.
