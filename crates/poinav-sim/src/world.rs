@@ -117,19 +117,27 @@ struct Rows {
 }
 
 impl Rows {
-    fn build(cells: usize, pairs: &mut [(u32, u32)]) -> Rows {
-        pairs.sort_unstable();
+    /// The rows of `(cell, item)` pairs given in ascending item order (as the index generates
+    /// them), placed by counting (no sort: the robots' grid is rebuilt every step); each cell
+    /// lists its items in ascending order.
+    fn build(cells: usize, pairs: &[(u32, u32)]) -> Rows {
         let mut start = vec![0u32; cells + 1];
-        for &(c, _) in pairs.iter() {
+        for &(c, _) in pairs {
             start[c as usize + 1] += 1;
         }
         for c in 0..cells {
             start[c + 1] += start[c];
         }
-        Rows {
-            start,
-            items: pairs.iter().map(|p| p.1).collect(),
+        let mut next = start.clone();
+        let mut items = vec![0u32; pairs.len()];
+        for &(c, item) in pairs {
+            let k = &mut next[c as usize];
+            items[*k as usize] = item;
+            *k += 1;
         }
+        let rows = Rows { start, items };
+        debug_assert!((0..cells).all(|c| rows.cell(c).is_sorted()));
+        rows
     }
 
     #[inline]
@@ -198,8 +206,8 @@ impl World {
                 pairs.push((c, i as u32 | PASSAGE))
             });
         }
-        w.statics = Rows::build(nx * ny, &mut pairs);
-        w.robots = Rows::build(nx * ny, &mut []);
+        w.statics = Rows::build(nx * ny, &pairs);
+        w.robots = Rows::build(nx * ny, &[]);
         w
     }
 
@@ -242,7 +250,7 @@ impl World {
             let (lo, hi) = b.aabb();
             self.cover(lo, hi, |c| pairs.push((c, i as u32)));
         }
-        self.robots = Rows::build(self.nx * self.ny, &mut pairs);
+        self.robots = Rows::build(self.nx * self.ny, &pairs);
         self.robot_pairs = pairs;
     }
 
