@@ -1,7 +1,8 @@
 //! Simulation at scale: a 200-robot scenario gives byte-identical traces and summaries on 1, 2
 //! and 4 threads; `trace every N` keeps exactly every N-th step of the full trace; a run
 //! without a trace has the same summary, expectations and plots as one with it; the trace
-//! streamed to a file equals the one kept in memory.
+//! streamed to a file equals the one kept in memory; a crowd at the single-lane doors decides
+//! as it did before the door check used the robot grid.
 
 use std::path::Path;
 
