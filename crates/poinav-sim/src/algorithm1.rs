@@ -27,7 +27,7 @@ use crate::poi_db::{Element, PoiDb, RoleSet};
 use crate::robot::Robot;
 use crate::route::NavGraph;
 use crate::sensor::{Reading, FRONT, LEFT, LEFT30, RANGE_M, RIGHT, RIGHT30};
-use crate::world::Target;
+use crate::world::{Target, World};
 
 /// Tunable behaviour constants (scenario table `[behaviour]`); defaults are documented in
 /// docs/scenarios.md.
@@ -226,7 +226,7 @@ impl Estimator {
 pub const MAX_BRACKET_M: f64 = 0.05;
 
 /// Algorithm 1's memory for one robot.
-#[derive(Debug, Clone)]
+#[derive(Debug)]
 pub struct Mind {
     estimator: Option<Estimator>,
     tracked: Vec<u32>,
@@ -250,6 +250,45 @@ impl Mind {
             keep: None,
             door_wait: None,
         }
+    }
+}
+
+impl Clone for Mind {
+    fn clone(&self) -> Mind {
+        let Mind {
+            estimator,
+            tracked,
+            c2,
+            zone,
+            keep,
+            door_wait,
+        } = self;
+        Mind {
+            estimator: estimator.clone(),
+            tracked: tracked.clone(),
+            c2: *c2,
+            zone: *zone,
+            keep: keep.clone(),
+            door_wait: *door_wait,
+        }
+    }
+
+    /// Reuses `self`'s list of tracked robots (the step copies every robot's mind).
+    fn clone_from(&mut self, source: &Mind) {
+        let Mind {
+            estimator,
+            tracked,
+            c2,
+            zone,
+            keep,
+            door_wait,
+        } = source;
+        self.estimator.clone_from(estimator);
+        self.tracked.clone_from(tracked);
+        self.c2 = *c2;
+        self.zone = *zone;
+        self.keep.clone_from(keep);
+        self.door_wait = *door_wait;
     }
 }
 
@@ -289,6 +328,9 @@ pub struct Env<'a> {
     pub nav: &'a NavGraph,
     /// All robots (for tracked robots' poses and priorities).
     pub robots: &'a [Robot],
+    /// The step's index: its robot boxes and grid are `robots`' footprints as they are now
+    /// (a robot's heading is read from its box's axis, sparing a sine and cosine).
+    pub world: &'a World,
     /// Behaviour constants.
     pub behaviour: &'a Behaviour,
     /// Step.
@@ -377,11 +419,37 @@ pub const DOOR_CONFLICT_M: f64 = 3.0;
 /// neither. `held` is the door it waited at in the last step: it keeps waiting there even when
 /// that door has left its heading's cone (a robot driving along a corridor sees a side door
 /// turn away as it nears it). Returns the nearest such door and the distance to it.
+///
+/// The other robots are looked up in the step's robot grid ([`World::any_robot_near`]) within
+/// [`DOOR_CONFLICT_M`] of the door, so a crowd at the doors costs what its neighbourhoods
+/// hold, not every robot per robot; the decision is the same as testing every robot
+/// ([`door_wait_every_robot`]), since a robot farther than that never counts.
 fn door_wait(me: usize, env: &Env<'_>, held: Option<u32>) -> Option<(u32, f64)> {
+    door_wait_with(me, env, held, |center, f| {
+        let r = DVec2::splat(DOOR_CONFLICT_M);
+        env.world.any_robot_near(center - r, center + r, f)
+    })
+}
+
+/// [`door_wait`] testing every robot (the reference for tests).
+pub fn door_wait_every_robot(me: usize, env: &Env<'_>, held: Option<u32>) -> Option<(u32, f64)> {
+    door_wait_with(me, env, held, |_, f| {
+        (0..env.robots.len() as u32).any(&mut *f)
+    })
+}
+
+/// [`door_wait`] with `others(center, f)` true when `f` is true for some robot that may be
+/// within [`DOOR_CONFLICT_M`] of `center` (it may also offer farther ones, and one twice).
+fn door_wait_with(
+    me: usize,
+    env: &Env<'_>,
+    held: Option<u32>,
+    others: impl Fn(DVec2, &mut dyn FnMut(u32) -> bool) -> bool,
+) -> Option<(u32, f64)> {
     let robot = &env.robots[me];
     let lim = &robot.limits;
     let pos = robot.state.pos;
-    let dir = robot.dir();
+    let dir = env.world.robot(me).ax;
     let cone = 50f64.to_radians().cos();
     let mut nearest: Option<(u32, f64)> = None;
     for (d, door) in env.floor.doors.iter().enumerate() {
@@ -395,10 +463,12 @@ fn door_wait(me: usize, env: &Env<'_>, held: Option<u32>) -> Option<(u32, f64)> 
             continue;
         }
         let my_side = -to.dot(axis);
-        let waits = env.robots.iter().enumerate().any(|(r, o)| {
+        let waits = others(door.center, &mut |r| {
+            let r = r as usize;
             if r == me {
                 return false;
             }
+            let o = &env.robots[r];
             let side_by_side = 2.0 * (lim.half_width + o.limits.half_width) + 3.0 * lim.margin;
             let rel = o.state.pos - door.center;
             let theirs = rel.length();
@@ -408,7 +478,7 @@ fn door_wait(me: usize, env: &Env<'_>, held: Option<u32>) -> Option<(u32, f64)> 
             let in_door = rel.dot(axis).abs() <= 0.3
                 && rel.dot(axis.perp()).abs() <= 0.5 * door.clear_width_m;
             let other_side = rel.dot(axis) * my_side < 0.0 || in_door;
-            let coming = in_door || o.dir().dot(-rel) > 0.0;
+            let coming = in_door || env.world.robot(r).ax.dot(-rel) > 0.0;
             let they_go = theirs + 0.05 < mine
                 || ((theirs - mine).abs() <= 0.05 && !has_priority(env.robots, me, r));
             // Once waiting, wait until the other has also cleared the door on this side (it
@@ -451,7 +521,7 @@ pub fn perceive(
     let lim = &robot.limits;
     let beh = env.behaviour;
     let pos = robot.state.pos;
-    let dir = robot.dir();
+    let dir = env.world.robot(me).ax;
     let forward = robot.state.speed >= 0.0;
     let mut roles = RoleSet::default();
     let mut cap = lim.max_speed;
@@ -609,7 +679,7 @@ pub fn perceive(
     // C-1.
     mind.tracked.retain(|&r| {
         env.robots[r as usize].state.pos.distance(pos)
-            <= RANGE_M + env.robots[r as usize].footprint().radius()
+            <= RANGE_M + env.world.robot(r as usize).radius()
     });
     mind.tracked.sort_unstable();
     let nearest = mind
@@ -653,7 +723,8 @@ pub fn perceive(
         for &r in &mind.tracked {
             let o = &env.robots[r as usize];
             let rel = o.state.pos - pos;
-            if rel.dot(dir) > 0.0 && o.dir().dot(dir) < -0.5 && rel.length() < RANGE_M {
+            let o_dir = env.world.robot(r as usize).ax;
+            if rel.dot(dir) > 0.0 && o_dir.dot(dir) < -0.5 && rel.length() < RANGE_M {
                 keep_right = true;
             }
         }
@@ -708,7 +779,7 @@ fn sensor_clearance(
 ) -> Option<(usize, f64)> {
     let robot = &env.robots[me];
     let pos = robot.state.pos;
-    let dir = robot.dir();
+    let dir = env.world.robot(me).ax;
     let max_off = env.behaviour.max_approach_deg.to_radians();
     if let Some(e) = &mind.estimator {
         let aligned = e.axis.dot(dir) >= max_off.cos();
@@ -873,5 +944,89 @@ pub fn decide(
     Command {
         v,
         omega: omega.clamp(-lim.max_turn, lim.max_turn),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::Obb;
+    use crate::robot::{Brush, Limits, RobotState};
+    use poinav_poi::RobotProfile;
+
+    /// Crowds around every door of the test building (robots of two sizes, any heading, some
+    /// overlapping, some waiting already): the grid lookup decides as testing every robot.
+    #[test]
+    fn door_waits_through_the_grid_equal_those_testing_every_robot() {
+        let scenario = crate::Scenario::from_toml(
+            "name = \"doors\"\nduration_s = 1.0\n[building]\ndemo = { rooms_per_side = 3 }\n[[robot]]\nname = \"R\"\nstart = { x = 1.0, y = 1.0 }\ncontroller = { kind = \"idle\" }\n",
+            "doors.toml",
+            std::path::Path::new("."),
+        )
+        .unwrap();
+        let floor = crate::prepare(&scenario, None, None).unwrap().floor;
+        assert!(floor.doors.len() >= 6, "{} doors", floor.doors.len());
+        let nav = NavGraph::new(&floor);
+        let mut seed = 0x2545_F491_4F6C_DD1Du64;
+        let mut rnd = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let paper = RobotProfile::paper();
+        let mut small = RobotProfile::paper();
+        small.width_m = 0.3;
+        small.length_m = 0.4;
+        let behaviour = Behaviour::default();
+        let (mut waits, mut held_waits) = (0, 0);
+        // Sparse crowds (two robots per door) so that robots near the conflict distance decide.
+        for _ in 0..100 {
+            let mut robots = Vec::new();
+            for k in 0..2 * floor.doors.len() {
+                let door = &floor.doors[k % floor.doors.len()];
+                let profile = if k % 3 == 0 { &small } else { &paper };
+                let at =
+                    door.center + DVec2::from_angle(rnd() * std::f64::consts::TAU) * (rnd() * 3.5);
+                robots.push(Robot {
+                    name: format!("R{k}"),
+                    global_id: format!("id{k}"),
+                    profile: profile.clone(),
+                    limits: Limits::new(profile, 50.0, 100.0),
+                    priority: (k % 2) as i64,
+                    state: RobotState {
+                        pos: at,
+                        heading: rnd() * std::f64::consts::TAU - std::f64::consts::PI,
+                        speed: 0.0,
+                        actual_speed: 0.0,
+                        omega: 0.0,
+                        odometer: 0.0,
+                        brush: Brush::paper(),
+                    },
+                });
+            }
+            let mut world = World::new(&floor, 1.0, 0.2);
+            let boxes: Vec<Obb> = robots.iter().map(Robot::footprint).collect();
+            world.set_robots(&boxes);
+            let env = Env {
+                floor: &floor,
+                nav: &nav,
+                robots: &robots,
+                world: &world,
+                behaviour: &behaviour,
+                step: 0,
+                t: 0.0,
+            };
+            for me in 0..robots.len() {
+                let held = (me % 4 == 0).then_some((me / 4 % floor.doors.len()) as u32);
+                let fast = door_wait(me, &env, held);
+                assert_eq!(fast, door_wait_every_robot(me, &env, held), "robot {me}");
+                waits += usize::from(fast.is_some());
+                held_waits += usize::from(held.is_some() && fast.map(|f| f.0) == held);
+            }
+        }
+        // Not trivial: many robots wait, some at the door they held.
+        assert!(waits > 80, "{waits} robots wait");
+        assert!(held_waits > 10, "{held_waits} keep waiting where they held");
     }
 }

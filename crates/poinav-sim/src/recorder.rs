@@ -14,7 +14,7 @@ use crate::events::Event;
 use crate::expect::Judge;
 use crate::samples::PlotSamples;
 use crate::step::Sim;
-use crate::trace::{self, Names, StepRecord};
+use crate::trace::{LineWriter, Names, StepRecord};
 
 /// Where a run writes its trace (JSON Lines, see [`crate::trace`]).
 #[allow(missing_debug_implementations)]
@@ -54,16 +54,21 @@ impl RobotFigures {
 }
 
 /// Lines of one step's trace, rendered in parallel, in robot order.
-fn step_lines(step: &[StepRecord], dt: f64, names: &Names, events: &[Vec<&Event>]) -> Vec<String> {
+fn step_lines(
+    step: &[StepRecord],
+    dt: f64,
+    writer: &LineWriter,
+    events: &[Vec<&Event>],
+) -> Vec<Vec<u8>> {
     const CHUNK: usize = 32;
     step.par_chunks(CHUNK)
         .enumerate()
         .map(|(c, chunk)| {
-            let mut s = String::with_capacity(chunk.len() * 1000);
+            let mut s = Vec::with_capacity(chunk.len() * 1000);
             for (k, r) in chunk.iter().enumerate() {
                 let ev = events.get(c * CHUNK + k).map_or(&[][..], Vec::as_slice);
-                trace::line_into(&mut s, r, dt, names, ev);
-                s.push('\n');
+                writer.line_into(&mut s, r, dt, ev);
+                s.push(b'\n');
             }
             s
         })
@@ -75,6 +80,7 @@ fn step_lines(step: &[StepRecord], dt: f64, names: &Names, events: &[Vec<&Event>
 pub struct Recorder<'w> {
     trace: Option<TraceOut<'w>>,
     names: Names,
+    lines: LineWriter,
     robot_of: BTreeMap<String, usize>,
     sizes: Vec<(f64, f64)>,
     seen: usize,
@@ -104,6 +110,7 @@ impl<'w> Recorder<'w> {
                 .map(|(i, name)| (name.clone(), i))
                 .collect(),
             judges,
+            lines: LineWriter::new(&names),
             names,
             sizes: sim.sizes(),
             seen: 0,
@@ -161,13 +168,11 @@ impl<'w> Recorder<'w> {
             }
             by_robot[r].push(e);
         }
-        for part in step_lines(step, dt, &self.names, &by_robot) {
-            out.writer
-                .write_all(part.as_bytes())
-                .map_err(|e| SimError::Io {
-                    path: out.name.clone(),
-                    message: e.to_string(),
-                })?;
+        for part in step_lines(step, dt, &self.lines, &by_robot) {
+            out.writer.write_all(&part).map_err(|e| SimError::Io {
+                path: out.name.clone(),
+                message: e.to_string(),
+            })?;
         }
         Ok(())
     }

@@ -89,8 +89,38 @@ enum Owner {
 struct Scratch {
     edges: Vec<(DVec2, DVec2, Owner)>,
     segs: Vec<(DVec2, DVec2, u32)>,
+    /// Edge indices of the last gather.
+    ids: Vec<u32>,
     /// The robots the last gather looked at.
     robots: Vec<u32>,
+}
+
+/// The robots a move looked at: a few kept inline (the common case, no allocation per robot
+/// and step), more on the heap.
+#[derive(Debug, Clone)]
+enum Near {
+    Few(u8, [u32; 7]),
+    Many(Vec<u32>),
+}
+
+impl Near {
+    fn of(robots: &[u32]) -> Near {
+        let mut few = [0u32; 7];
+        match few.get_mut(..robots.len()) {
+            Some(head) => {
+                head.copy_from_slice(robots);
+                Near::Few(robots.len() as u8, few)
+            }
+            None => Near::Many(robots.to_vec()),
+        }
+    }
+
+    fn as_slice(&self) -> &[u32] {
+        match self {
+            Near::Few(n, few) => &few[..*n as usize],
+            Near::Many(v) => v,
+        }
+    }
 }
 
 /// One robot's move in a step, before it is committed.
@@ -110,7 +140,7 @@ struct Move {
 fn gather(world: &World, me: usize, b: Obb, reach: f64, sc: &mut Scratch) {
     let (lo, hi) = b.aabb();
     let w = DVec2::splat(reach + 0.05);
-    world.segments_near(lo - w, hi + w, &mut sc.segs);
+    world.segments_near(lo - w, hi + w, &mut sc.ids, &mut sc.segs);
     world.robots_near(lo - w, hi + w, me, &mut sc.robots);
     sc.edges.clear();
     sc.edges
@@ -189,6 +219,8 @@ pub struct Sim<'f> {
     db: PoiDb,
     robots: Vec<Robot>,
     minds: Vec<Mind>,
+    /// Last step's minds, the memory the next step's copies reuse.
+    next_minds: Vec<Mind>,
     ctrls: Vec<Controller>,
     opts: SimOptions,
     step: u64,
@@ -319,6 +351,7 @@ impl<'f> Sim<'f> {
             db,
             robots,
             minds: vec![Mind::new(); n],
+            next_minds: Vec::new(),
             ctrls,
             opts,
             step: 0,
@@ -434,8 +467,9 @@ impl<'f> Sim<'f> {
     pub fn tick(&mut self, advance: bool) {
         let t = self.step as f64 * self.opts.dt;
         let n = self.robots.len();
-        let boxes: Vec<Obb> = self.robots.iter().map(|r| r.footprint()).collect();
-        self.world.set_robots(&boxes);
+        // The world holds every robot's footprint at its current pose (set when placed, then
+        // by each committed move): only their grid is rebuilt.
+        self.world.refresh_robots();
         let world = &self.world;
         self.robots
             .par_iter()
@@ -471,36 +505,43 @@ impl<'f> Sim<'f> {
             floor: self.floor,
             nav: &self.nav,
             robots: &self.robots,
+            world: &self.world,
             behaviour: &self.opts.behaviour,
             step: self.step,
             t,
         };
-        type Perceived = (Mind, Vec<Event>, Perception, Option<PendingClearance>);
-        let run = |i: usize, db: &PoiDb, mind: &Mind, reading: &Reading| -> Perceived {
-            let mut mind = mind.clone();
+        type Perceived = (Vec<Event>, Perception, Option<PendingClearance>);
+        let run = |i: usize, db: &PoiDb, mind: &mut Mind, reading: &Reading| -> Perceived {
             let (mut events, mut observations) = (Vec::new(), Vec::new());
             let mut sink = Sink {
                 events: &mut events,
                 observations: &mut observations,
             };
-            let (p, pending) = algorithm1::perceive(i, reading, &env, db, &mut mind, &mut sink);
-            (mind, events, p, pending)
+            let (p, pending) = algorithm1::perceive(i, reading, &env, db, mind, &mut sink);
+            (events, p, pending)
         };
+        // Each robot perceives on a copy of its mind (the copies reuse last step's memory).
+        let mut next = std::mem::take(&mut self.next_minds);
+        next.resize_with(self.minds.len(), Mind::new);
         let (db, minds, readings) = (&self.db, &self.minds, &self.readings);
-        let guesses: Vec<Perceived> = (0..self.robots.len())
-            .into_par_iter()
+        let guesses: Vec<Perceived> = next
+            .par_iter_mut()
+            .enumerate()
             .with_min_len(8)
-            .map(|i| run(i, db, &minds[i], &readings[i]))
+            .map(|(i, mind)| {
+                mind.clone_from(&minds[i]);
+                run(i, db, mind, &readings[i])
+            })
             .collect();
         self.perceptions.clear();
         let mut changed = false;
         for (i, guess) in guesses.into_iter().enumerate() {
-            let (mind, events, p, pending) = if changed {
-                run(i, &self.db, &self.minds[i], &self.readings[i])
+            let (events, p, pending) = if changed {
+                next[i].clone_from(&self.minds[i]);
+                run(i, &self.db, &mut next[i], &self.readings[i])
             } else {
                 guess
             };
-            self.minds[i] = mind;
             let split = pending.map_or(events.len(), |c| c.events_before);
             let mut events = events.into_iter();
             self.events.extend(events.by_ref().take(split));
@@ -514,6 +555,8 @@ impl<'f> Sim<'f> {
             self.events.extend(events);
             self.perceptions.push(p);
         }
+        std::mem::swap(&mut self.minds, &mut next);
+        self.next_minds = next;
         let nearest: Vec<Option<(u32, f64)>> = self.perceptions.iter().map(|p| p.nearest).collect();
         let mut sink = Sink {
             events: &mut self.events,
@@ -611,18 +654,18 @@ impl<'f> Sim<'f> {
     /// the sequential one.
     fn move_all(&mut self, actions: &[Command], t: f64) {
         let this = &*self;
-        let guesses: Vec<(Move, Vec<u32>)> = (0..actions.len())
+        let guesses: Vec<(Move, Near)> = (0..actions.len())
             .into_par_iter()
             .with_min_len(8)
             .map_init(Scratch::default, |sc, i| {
                 let m = this.plan_move(i, actions[i], sc);
-                (m, sc.robots.clone())
+                (m, Near::of(&sc.robots))
             })
             .collect();
         let mut moved = vec![false; actions.len()];
         let mut sc = Scratch::default();
         for (i, (guess, near)) in guesses.into_iter().enumerate() {
-            let m = if near.iter().any(|&j| moved[j as usize]) {
+            let m = if near.as_slice().iter().any(|&j| moved[j as usize]) {
                 self.plan_move(i, actions[i], &mut sc)
             } else {
                 guess
@@ -639,7 +682,8 @@ impl<'f> Sim<'f> {
         let (lim, st) = (&self.robots[i].limits, self.robots[i].state);
         let v = lim.next_speed(st.speed, action.v, dt);
         let omega = lim.turn(action.omega);
-        let start = self.robots[i].footprint();
+        // The world holds robot i's footprint at its current pose.
+        let start = *self.world.robot(i);
         gather(
             &self.world,
             i,
@@ -650,21 +694,37 @@ impl<'f> Sim<'f> {
         let edges = &sc.edges;
         let mut heading = wrap_angle(st.heading + omega * dt);
         let mut pos = st.pos;
+        // The box's axis at `heading` (its sine and cosine computed once: every box below is
+        // the robot's footprint at `heading`, bit for bit as `footprint_at` builds it).
+        let (hl, hw) = (start.hl, start.hw);
+        let mut dir = start.ax;
         if heading != st.heading {
-            let turned = self.robots[i].footprint_at(pos, heading);
+            let turned_dir = DVec2::from_angle(heading);
+            let turned = Obb {
+                c: pos,
+                ax: turned_dir,
+                hl,
+                hw,
+            };
             match resolve(edges, turned) {
-                Some(p) => pos = p,
+                Some(p) => {
+                    pos = p;
+                    dir = turned_dir;
+                }
                 None => heading = st.heading,
             }
+        } else if heading.to_bits() != st.heading.to_bits() {
+            // -0 and 0: no turn, but the sine's sign differs.
+            dir = DVec2::from_angle(heading);
         }
-        let dir = DVec2::from_angle(heading);
+        let at = |pos: DVec2, ax: DVec2| Obb { c: pos, ax, hl, hw };
         let mut rem = dir * (v * dt);
         let mut touched: Vec<Owner> = Vec::new();
         for _ in 0..4 {
             if rem.length_squared() < 1e-24 {
                 break;
             }
-            let corners = self.robots[i].footprint_at(pos, heading).corners();
+            let corners = at(pos, dir).corners();
             let mut hit: Option<(f64, DVec2, Owner)> = None;
             for &(a, b, o) in edges {
                 if let Some((s, n)) = sweep_segment(&corners, rem, a, b) {
@@ -691,9 +751,10 @@ impl<'f> Sim<'f> {
                 }
             }
         }
-        if deepest(edges, &self.robots[i].footprint_at(pos, heading)).is_some() {
+        if deepest(edges, &at(pos, dir)).is_some() {
             pos = st.pos;
             heading = st.heading;
+            dir = start.ax;
         }
         let moved = pos - st.pos;
         Move {
@@ -704,10 +765,10 @@ impl<'f> Sim<'f> {
             speed: if touched.is_empty() {
                 v
             } else {
-                moved.dot(DVec2::from_angle(heading)) / dt
+                moved.dot(dir) / dt
             },
             travelled: moved.length(),
-            footprint: self.robots[i].footprint_at(pos, heading),
+            footprint: at(pos, dir),
             touched,
         }
     }
@@ -720,8 +781,8 @@ impl<'f> Sim<'f> {
         r.state.actual_speed = m.actual_speed;
         r.state.speed = m.speed;
         r.state.odometer += m.travelled;
-        let b = r.footprint();
-        self.world.update_robot(i, b);
+        // `m.footprint` is the footprint at the new pose.
+        self.world.update_robot(i, m.footprint);
         for o in &m.touched {
             if !self.touching[i].contains(o) {
                 let (with, class) = match *o {

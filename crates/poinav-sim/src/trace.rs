@@ -2,15 +2,12 @@
 //! distance, hit GlobalId and doors looked through, active roles, controller mode, zone, brush,
 //! events), written as JSON Lines with fixed decimals so equal runs give equal bytes.
 
-use std::fmt::Write;
-
 use glam::DVec2;
 
 use crate::controller::{Command, Mode};
 use crate::events::Event;
 use crate::poi_db::RoleSet;
 use crate::robot::Brush;
-use crate::sensor::RAY_DEG;
 use crate::world::{RayHit, Target};
 
 /// A minimal JSON writer with fixed-decimal numbers (`-0` is written as `0`, trailing zeros
@@ -77,7 +74,7 @@ impl Json {
     /// An integer.
     pub fn int(&mut self, v: i64) -> &mut Json {
         self.sep();
-        let _ = write!(self.out, "{v}");
+        push_int(&mut self.out, v);
         self
     }
 
@@ -131,14 +128,42 @@ impl Json {
     }
 }
 
-fn push_str(out: &mut String, s: &str) {
+/// Text being written: a `String` (the general [`Json`] writer) or bytes (trace lines).
+trait Text {
+    /// Appends `s`.
+    fn put(&mut self, s: &str);
+    /// Appends ASCII bytes.
+    fn put_ascii(&mut self, b: &[u8]);
+}
+
+impl Text for String {
+    fn put(&mut self, s: &str) {
+        self.push_str(s);
+    }
+
+    fn put_ascii(&mut self, b: &[u8]) {
+        self.push_str(std::str::from_utf8(b).unwrap_or_default());
+    }
+}
+
+impl Text for Vec<u8> {
+    fn put(&mut self, s: &str) {
+        self.extend_from_slice(s.as_bytes());
+    }
+
+    fn put_ascii(&mut self, b: &[u8]) {
+        self.extend_from_slice(b);
+    }
+}
+
+fn push_str<T: Text>(out: &mut T, s: &str) {
     // serde_json escapes only quotes, backslashes and control characters.
     if s.bytes().all(|b| b >= 0x20 && b != b'"' && b != b'\\') {
-        out.push('"');
-        out.push_str(s);
-        out.push('"');
+        out.put_ascii(b"\"");
+        out.put(s);
+        out.put_ascii(b"\"");
     } else {
-        out.push_str(&serde_json::to_string(s).expect("strings serialise"));
+        out.put(&serde_json::to_string(s).expect("strings serialise"));
     }
 }
 
@@ -150,59 +175,102 @@ pub fn fixed(v: f64, decimals: usize) -> String {
 }
 
 const POW10: [f64; 7] = [1.0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6];
+const POW10_U64: [u64; 7] = [1, 10, 100, 1_000, 10_000, 100_000, 1_000_000];
+
+/// Two-digit pieces "00" to "99".
+const PAIRS: &[u8; 200] = b"\
+0001020304050607080910111213141516171819\
+2021222324252627282930313233343536373839\
+4041424344454647484950515253545556575859\
+6061626364656667686970717273747576777879\
+8081828384858687888990919293949596979899";
+
+/// Appends the decimal digits of `v`, zero-padded to at least `width` digits (at most 20),
+/// without the general formatter.
+fn push_digits<T: Text>(out: &mut T, mut v: u64, width: usize) {
+    let mut buf = [b'0'; 20];
+    let mut i = buf.len();
+    while v >= 100 {
+        let k = (v % 100) as usize * 2;
+        v /= 100;
+        i -= 2;
+        buf[i..i + 2].copy_from_slice(&PAIRS[k..k + 2]);
+    }
+    if v >= 10 {
+        let k = v as usize * 2;
+        i -= 2;
+        buf[i..i + 2].copy_from_slice(&PAIRS[k..k + 2]);
+    } else if v > 0 {
+        i -= 1;
+        buf[i] = b'0' + v as u8;
+    }
+    let start = i.min(buf.len() - width.clamp(1, buf.len()));
+    out.put_ascii(&buf[start..]);
+}
+
+/// Appends `v` as `format!("{v}")` writes it.
+fn push_int<T: Text>(out: &mut T, v: i64) {
+    if v < 0 {
+        out.put_ascii(b"-");
+    }
+    push_digits(out, v.unsigned_abs(), 1);
+}
 
 /// Appends [`fixed`]`(v, decimals)` to `out`. The same digits as `format!("{v:.decimals$}")`
 /// (the exact binary value correctly rounded), trimmed; the common case without the general
 /// formatter: `v` scaled by `10^decimals` in `f64` is off the exact product by at most half an
 /// ulp, so when it is farther than that from a rounding boundary (half an integer) it rounds
 /// like the exact product, and the integer is printed.
-fn push_fixed(out: &mut String, v: f64, decimals: usize) {
+fn push_fixed<T: Text>(out: &mut T, v: f64, decimals: usize) {
     if !v.is_finite() {
-        out.push_str("null");
+        out.put_ascii(b"null");
         return;
     }
     if decimals < POW10.len() {
         let x = v * POW10[decimals];
-        let frac = x - x.floor();
-        let margin = x.abs() * 2.3e-16 + 1e-300;
-        if x.abs() < 1e15 && (frac - 0.5).abs() > margin {
-            let m = x.round() as i64;
-            if m == 0 {
-                out.push('0');
+        if x.abs() < 1e15 {
+            // floor(x) without a libm call: truncation, one less below zero.
+            let t = x as i64;
+            let floor = if (t as f64) > x { t - 1 } else { t };
+            let frac = x - floor as f64;
+            let margin = x.abs() * 2.3e-16 + 1e-300;
+            if (frac - 0.5).abs() > margin {
+                // Not at a tie: rounding half away from zero is rounding to the nearer one.
+                let m = if frac > 0.5 { floor + 1 } else { floor };
+                if m == 0 {
+                    out.put_ascii(b"0");
+                    return;
+                }
+                if m < 0 {
+                    out.put_ascii(b"-");
+                }
+                let m = m.unsigned_abs();
+                let p = POW10_U64[decimals];
+                push_digits(out, m / p, 1);
+                let mut f = m % p;
+                if f != 0 {
+                    let mut digits = decimals;
+                    while f % 10 == 0 {
+                        f /= 10;
+                        digits -= 1;
+                    }
+                    out.put_ascii(b".");
+                    push_digits(out, f, digits);
+                }
                 return;
             }
-            if m < 0 {
-                out.push('-');
-            }
-            let m = m.unsigned_abs();
-            let p = 10u64.pow(decimals as u32);
-            let _ = write!(out, "{}", m / p);
-            let mut f = m % p;
-            if f != 0 {
-                let mut digits = decimals;
-                while f % 10 == 0 {
-                    f /= 10;
-                    digits -= 1;
-                }
-                let _ = write!(out, ".{f:0digits$}");
-            }
-            return;
         }
     }
-    let start = out.len();
-    let _ = write!(out, "{v:.decimals$}");
-    if out[start..].contains('.') {
-        while out.ends_with('0') {
-            out.pop();
+    let mut s = format!("{v:.decimals$}");
+    if s.contains('.') {
+        while s.ends_with('0') {
+            s.pop();
         }
-        if out.ends_with('.') {
-            out.pop();
+        if s.ends_with('.') {
+            s.pop();
         }
     }
-    if &out[start..] == "-0" {
-        out.truncate(start);
-        out.push('0');
-    }
+    out.put(if s == "-0" { "0" } else { &s });
 }
 
 /// One robot in one step.
@@ -272,76 +340,339 @@ pub fn line(r: &StepRecord, dt: f64, names: &Names, events: &[&Event]) -> String
     s
 }
 
-/// Appends [`line`] to `out`.
+/// Appends [`line`] to `out` (for many lines, prepare a [`LineWriter`] once instead).
 pub fn line_into(out: &mut String, r: &StepRecord, dt: f64, names: &Names, events: &[&Event]) {
-    let mut j = Json {
-        out: std::mem::take(out),
-        ..Json::default()
-    };
-    j.begin_object();
-    j.key("step").int(r.step as i64);
-    j.key("t").num(r.step as f64 * dt, 6);
-    j.key("robot").str(&names.robots[r.robot as usize]);
-    j.key("x").num(r.pos.x, 6);
-    j.key("y").num(r.pos.y, 6);
-    j.key("heading_deg").num(r.heading.to_degrees(), 4);
-    j.key("speed").num(r.speed, 6);
-    j.key("omega_deg_s").num(r.omega.to_degrees(), 4);
-    j.key("cmd").begin_object();
-    j.key("v").num(r.action.v, 6);
-    j.key("omega_deg_s").num(r.action.omega.to_degrees(), 4);
-    j.end_object();
-    j.key("mode").str(r.mode.label());
-    j.key("zone")
-        .opt_str(r.zone.map(|z| names.zones[z as usize].as_str()));
-    j.key("roles").begin_array();
-    for role in r.roles.roles() {
-        j.str(role.label());
-    }
-    j.end_array();
-    j.key("brush").begin_object();
-    j.key("on").bool(r.brush.on);
-    j.key("angle_deg").num(r.brush.angle_deg, 3);
-    j.end_object();
-    j.key("rays").begin_array();
-    for (k, ray) in r.rays.iter().enumerate() {
-        j.begin_object();
-        j.key("deg").num(RAY_DEG[k], 0);
-        j.key("d").num(ray.dist, 6);
-        match names.target(ray.target) {
-            Some((id, class)) => {
-                j.key("hit").str(id);
-                j.key("class").str(class);
-            }
-            None => {
-                j.key("hit").null();
-            }
+    let mut bytes = Vec::new();
+    LineWriter::new(names).line_into(&mut bytes, r, dt, events);
+    out.push_str(&String::from_utf8(bytes).expect("lines are written from UTF-8 text"));
+}
+
+/// Writes trace lines fast: the names rendered once as the JSON text a line holds (quoted and
+/// escaped, a ray's hit with its class), the fixed keys as whole pieces of text and the
+/// numbers without the general formatter. The bytes are those of a line built value by value
+/// with [`Json`] (the tests compare both).
+#[derive(Debug, Clone, Default)]
+pub struct LineWriter {
+    /// Robot names, quoted.
+    robots: Vec<String>,
+    /// Per obstacle: `"hit":"GlobalId","class":"Class"`.
+    obstacle_hits: Vec<String>,
+    /// Per robot: `"hit":"GlobalId","class":"Robot"`.
+    robot_hits: Vec<String>,
+    /// Door GlobalIds, quoted.
+    doors: Vec<String>,
+    /// Zone names, quoted.
+    zones: Vec<String>,
+}
+
+/// A ray's object up to its distance, per ray in [`crate::sensor::RAY_DEG`] order.
+const RAY_START: [&str; 5] = [
+    "{\"deg\":0,\"d\":",
+    ",{\"deg\":30,\"d\":",
+    ",{\"deg\":-30,\"d\":",
+    ",{\"deg\":90,\"d\":",
+    ",{\"deg\":-90,\"d\":",
+];
+
+impl LineWriter {
+    /// Renders `names`.
+    pub fn new(names: &Names) -> LineWriter {
+        let quoted = |s: &str| {
+            let mut q = String::new();
+            push_str(&mut q, s);
+            q
+        };
+        let hit = |id: &str, class: &str| {
+            let mut q = String::from("\"hit\":");
+            push_str(&mut q, id);
+            q.push_str(",\"class\":");
+            push_str(&mut q, class);
+            q
+        };
+        LineWriter {
+            robots: names.robots.iter().map(|n| quoted(n)).collect(),
+            obstacle_hits: names
+                .obstacles
+                .iter()
+                .zip(&names.obstacle_classes)
+                .map(|(id, class)| hit(id, class))
+                .collect(),
+            robot_hits: names.robot_ids.iter().map(|id| hit(id, "Robot")).collect(),
+            doors: names.doors.iter().map(|d| quoted(d)).collect(),
+            zones: names.zones.iter().map(|z| quoted(z)).collect(),
         }
-        if !ray.passages.is_empty() {
-            j.key("through").begin_array();
-            for &d in ray.passages.doors() {
-                j.str(&names.doors[d as usize]);
-            }
-            j.end_array();
+    }
+
+    /// Appends the line of `r` and its `events` (no newline) to `out`.
+    pub fn line_into(&self, out: &mut Vec<u8>, r: &StepRecord, dt: f64, events: &[&Event]) {
+        out.put("{\"step\":");
+        push_digits(out, r.step, 1);
+        out.put(",\"t\":");
+        push_fixed(out, r.step as f64 * dt, 6);
+        out.put(",\"robot\":");
+        out.put(&self.robots[r.robot as usize]);
+        out.put(",\"x\":");
+        push_fixed(out, r.pos.x, 6);
+        out.put(",\"y\":");
+        push_fixed(out, r.pos.y, 6);
+        out.put(",\"heading_deg\":");
+        push_fixed(out, r.heading.to_degrees(), 4);
+        out.put(",\"speed\":");
+        push_fixed(out, r.speed, 6);
+        out.put(",\"omega_deg_s\":");
+        push_fixed(out, r.omega.to_degrees(), 4);
+        out.put(",\"cmd\":{\"v\":");
+        push_fixed(out, r.action.v, 6);
+        out.put(",\"omega_deg_s\":");
+        push_fixed(out, r.action.omega.to_degrees(), 4);
+        out.put("},\"mode\":");
+        push_str(out, r.mode.label());
+        out.put(",\"zone\":");
+        match r.zone {
+            Some(z) => out.put(&self.zones[z as usize]),
+            None => out.put("null"),
         }
-        j.end_object();
+        out.put(",\"roles\":[");
+        for (k, role) in r.roles.roles().enumerate() {
+            if k > 0 {
+                out.put_ascii(b",");
+            }
+            push_str(out, role.label());
+        }
+        out.put("],\"brush\":{\"on\":");
+        out.put(if r.brush.on { "true" } else { "false" });
+        out.put(",\"angle_deg\":");
+        push_fixed(out, r.brush.angle_deg, 3);
+        out.put("},\"rays\":[");
+        for (k, ray) in r.rays.iter().enumerate() {
+            out.put(RAY_START[k]);
+            push_fixed(out, ray.dist, 6);
+            out.put_ascii(b",");
+            match ray.target {
+                Target::None => out.put("\"hit\":null"),
+                Target::Obstacle(i) => out.put(&self.obstacle_hits[i as usize]),
+                Target::Robot(i) => out.put(&self.robot_hits[i as usize]),
+            }
+            if !ray.passages.is_empty() {
+                out.put(",\"through\":[");
+                for (n, &d) in ray.passages.doors().iter().enumerate() {
+                    if n > 0 {
+                        out.put_ascii(b",");
+                    }
+                    out.put(&self.doors[d as usize]);
+                }
+                out.put_ascii(b"]");
+            }
+            out.put_ascii(b"}");
+        }
+        out.put("],\"events\":[");
+        if !events.is_empty() {
+            // Inside the array: the events as objects, written value by value.
+            let mut j = Json {
+                stack: vec![false],
+                ..Json::default()
+            };
+            for e in events {
+                j.begin_object();
+                j.key("kind").str(e.kind.tag());
+                e.kind.write_fields(&mut j);
+                j.end_object();
+            }
+            out.put(&j.out);
+        }
+        out.put("]}");
     }
-    j.end_array();
-    j.key("events").begin_array();
-    for e in events {
-        j.begin_object();
-        j.key("kind").str(e.kind.tag());
-        e.kind.write_fields(&mut j);
-        j.end_object();
-    }
-    j.end_array();
-    j.end_object();
-    *out = j.finish();
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::sensor::RAY_DEG;
+
+    /// The line built value by value with [`Json`] (how [`LineWriter`] wrote it before).
+    fn reference_line(out: &mut String, r: &StepRecord, dt: f64, names: &Names, events: &[&Event]) {
+        let mut j = Json {
+            out: std::mem::take(out),
+            ..Json::default()
+        };
+        j.begin_object();
+        j.key("step").int(r.step as i64);
+        j.key("t").num(r.step as f64 * dt, 6);
+        j.key("robot").str(&names.robots[r.robot as usize]);
+        j.key("x").num(r.pos.x, 6);
+        j.key("y").num(r.pos.y, 6);
+        j.key("heading_deg").num(r.heading.to_degrees(), 4);
+        j.key("speed").num(r.speed, 6);
+        j.key("omega_deg_s").num(r.omega.to_degrees(), 4);
+        j.key("cmd").begin_object();
+        j.key("v").num(r.action.v, 6);
+        j.key("omega_deg_s").num(r.action.omega.to_degrees(), 4);
+        j.end_object();
+        j.key("mode").str(r.mode.label());
+        j.key("zone")
+            .opt_str(r.zone.map(|z| names.zones[z as usize].as_str()));
+        j.key("roles").begin_array();
+        for role in r.roles.roles() {
+            j.str(role.label());
+        }
+        j.end_array();
+        j.key("brush").begin_object();
+        j.key("on").bool(r.brush.on);
+        j.key("angle_deg").num(r.brush.angle_deg, 3);
+        j.end_object();
+        j.key("rays").begin_array();
+        for (k, ray) in r.rays.iter().enumerate() {
+            j.begin_object();
+            j.key("deg").num(RAY_DEG[k], 0);
+            j.key("d").num(ray.dist, 6);
+            match names.target(ray.target) {
+                Some((id, class)) => {
+                    j.key("hit").str(id);
+                    j.key("class").str(class);
+                }
+                None => {
+                    j.key("hit").null();
+                }
+            }
+            if !ray.passages.is_empty() {
+                j.key("through").begin_array();
+                for &d in ray.passages.doors() {
+                    j.str(&names.doors[d as usize]);
+                }
+                j.end_array();
+            }
+            j.end_object();
+        }
+        j.end_array();
+        j.key("events").begin_array();
+        for e in events {
+            j.begin_object();
+            j.key("kind").str(e.kind.tag());
+            e.kind.write_fields(&mut j);
+            j.end_object();
+        }
+        j.end_array();
+        j.end_object();
+        *out = j.finish();
+    }
+
+    /// Every record of two shipped scenarios (a door measured, robots meeting: hits on walls
+    /// and robots, looks through doors, events), then the same records with awkward numbers:
+    /// the fast writer writes the bytes of the line built value by value.
+    #[test]
+    fn line_writer_writes_the_reference_bytes() {
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios");
+        let awkward = [
+            0.0,
+            -0.0,
+            1e-7,
+            -1e-7,
+            5e-7,
+            -4.9999999e-7,
+            0.5,
+            -2.5,
+            12345678.9,
+            -9.87654321e14,
+            3.0e15,
+            1e300,
+            f64::NAN,
+            f64::INFINITY,
+            f64::MIN_POSITIVE,
+            123.4564999,
+        ];
+        let (mut lines, mut with_events, mut through, mut robot_hits) = (0, 0, 0, 0);
+        for (file, variant) in [("doorway.toml", Some("door-0.80")), ("yield.toml", None)] {
+            let scenario = crate::Scenario::load(&dir.join(file)).unwrap();
+            let floor = crate::prepare(&scenario, variant, None).unwrap().floor;
+            let setups: Vec<_> = scenario.robots.iter().map(|r| r.setup.clone()).collect();
+            let mut sim = crate::Sim::new(&floor, &setups, crate::SimOptions::default()).unwrap();
+            let names = sim.names();
+            let writer = LineWriter::new(&names);
+            let mut seen = 0;
+            for k in 0..=240 {
+                sim.tick(k < 240);
+                let events = &sim.events()[seen..];
+                seen = sim.events().len();
+                for r in sim.last_records() {
+                    let mine: Vec<&Event> = events
+                        .iter()
+                        .filter(|e| e.robot == names.robots[r.robot as usize])
+                        .collect();
+                    let mut variants = vec![r.clone()];
+                    let a = awkward[(r.step as usize + r.robot as usize) % awkward.len()];
+                    let b = awkward[(r.step as usize * 7 + 3) % awkward.len()];
+                    let mut odd = r.clone();
+                    odd.pos = DVec2::new(a, b);
+                    odd.heading = b;
+                    odd.speed = -a;
+                    odd.omega = a;
+                    odd.action = Command { v: b, omega: -b };
+                    odd.brush.angle_deg = a;
+                    odd.rays[r.step as usize % 5].dist = b;
+                    odd.step = r.step * 1_000_003;
+                    variants.push(odd);
+                    for v in &variants {
+                        let mut fast = b"prefix ".to_vec();
+                        writer.line_into(&mut fast, v, 1.0 / 60.0, &mine);
+                        let mut want = String::from("prefix ");
+                        reference_line(&mut want, v, 1.0 / 60.0, &names, &mine);
+                        assert_eq!(String::from_utf8(fast).unwrap(), want);
+                        let mut via_names = String::from("prefix ");
+                        line_into(&mut via_names, v, 1.0 / 60.0, &names, &mine);
+                        assert_eq!(via_names, want);
+                        lines += 1;
+                    }
+                    with_events += usize::from(!mine.is_empty());
+                    through += r.rays.iter().filter(|h| !h.passages.is_empty()).count();
+                    robot_hits += r
+                        .rays
+                        .iter()
+                        .filter(|h| matches!(h.target, Target::Robot(_)))
+                        .count();
+                }
+            }
+        }
+        assert_eq!(
+            lines, 1446,
+            "lines: 241 steps of 1 + 2 robots, each as is and with odd numbers"
+        );
+        assert!(with_events > 10, "{with_events} lines with events");
+        assert!(through > 100, "{through} rays through doors");
+        assert!(robot_hits > 20, "{robot_hits} rays on robots");
+    }
+
+    #[test]
+    fn integers_are_written_as_the_general_formatter_writes_them() {
+        let mut seed = 0x0123_4567_89AB_CDEFu64;
+        let mut values = vec![
+            0i64,
+            1,
+            -1,
+            9,
+            10,
+            -10,
+            99,
+            100,
+            i64::MAX,
+            i64::MIN,
+            1 << 53,
+        ];
+        for _ in 0..10_000 {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            values.push((seed as i64) >> (seed % 63));
+        }
+        for v in values {
+            let mut s = String::new();
+            push_int(&mut s, v);
+            assert_eq!(s, v.to_string());
+            assert_eq!(s, serde_json::to_string(&v).unwrap());
+        }
+        let mut s = String::new();
+        push_digits(&mut s, 42, 5);
+        assert_eq!(s, "00042");
+    }
 
     #[test]
     fn numbers_are_fixed_and_signless_at_zero() {
@@ -405,7 +736,26 @@ mod tests {
             }
         }
         for v in [
-            0.5, 1.5, 2.5, -0.5, 0.0000005, 0.0000015, 1e15, -1e-300, 5e-7, -5e-7,
+            0.5,
+            1.5,
+            2.5,
+            -0.5,
+            0.0000005,
+            0.0000015,
+            1e15,
+            -1e-300,
+            5e-7,
+            -5e-7,
+            -0.0,
+            1e-7,
+            -1e-7,
+            123456789.123456,
+            -999999999.9999995,
+            -2.5e14,
+            9.2e18,
+            -1.7e308,
+            -3.0,
+            7.0,
         ] {
             for d in [0usize, 3, 4, 6] {
                 assert_eq!(fixed(v, d), reference(v, d), "{v:e} with {d} decimals");

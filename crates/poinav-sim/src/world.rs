@@ -117,19 +117,27 @@ struct Rows {
 }
 
 impl Rows {
-    fn build(cells: usize, pairs: &mut [(u32, u32)]) -> Rows {
-        pairs.sort_unstable();
+    /// The rows of `(cell, item)` pairs given in ascending item order (as the index generates
+    /// them), placed by counting (no sort: the robots' grid is rebuilt every step); each cell
+    /// lists its items in ascending order.
+    fn build(cells: usize, pairs: &[(u32, u32)]) -> Rows {
         let mut start = vec![0u32; cells + 1];
-        for &(c, _) in pairs.iter() {
+        for &(c, _) in pairs {
             start[c as usize + 1] += 1;
         }
         for c in 0..cells {
             start[c + 1] += start[c];
         }
-        Rows {
-            start,
-            items: pairs.iter().map(|p| p.1).collect(),
+        let mut next = start.clone();
+        let mut items = vec![0u32; pairs.len()];
+        for &(c, item) in pairs {
+            let k = &mut next[c as usize];
+            items[*k as usize] = item;
+            *k += 1;
         }
+        let rows = Rows { start, items };
+        debug_assert!((0..cells).all(|c| rows.cell(c).is_sorted()));
+        rows
     }
 
     #[inline]
@@ -198,8 +206,8 @@ impl World {
                 pairs.push((c, i as u32 | PASSAGE))
             });
         }
-        w.statics = Rows::build(nx * ny, &mut pairs);
-        w.robots = Rows::build(nx * ny, &mut []);
+        w.statics = Rows::build(nx * ny, &pairs);
+        w.robots = Rows::build(nx * ny, &[]);
         w
     }
 
@@ -211,8 +219,9 @@ impl World {
     fn cell_of(&self, p: DVec2) -> (usize, usize) {
         let q = (p - self.lo) / self.cell;
         (
-            (q.x.floor().max(0.0) as usize).min(self.nx - 1),
-            (q.y.floor().max(0.0) as usize).min(self.ny - 1),
+            // Truncation is the floor here: negatives (and NaN) become cell 0 either way.
+            (q.x.max(0.0) as usize).min(self.nx - 1),
+            (q.y.max(0.0) as usize).min(self.ny - 1),
         )
     }
 
@@ -230,13 +239,18 @@ impl World {
     pub fn set_robots(&mut self, boxes: &[Obb]) {
         self.boxes.clear();
         self.boxes.extend_from_slice(boxes);
+        self.refresh_robots();
+    }
+
+    /// Rebuilds the robots' grid from their current boxes (those [`World::update_robot`] set).
+    pub fn refresh_robots(&mut self) {
         let mut pairs = std::mem::take(&mut self.robot_pairs);
         pairs.clear();
-        for (i, b) in boxes.iter().enumerate() {
+        for (i, b) in self.boxes.iter().enumerate() {
             let (lo, hi) = b.aabb();
             self.cover(lo, hi, |c| pairs.push((c, i as u32)));
         }
-        self.robots = Rows::build(self.nx * self.ny, &mut pairs);
+        self.robots = Rows::build(self.nx * self.ny, &pairs);
         self.robot_pairs = pairs;
     }
 
@@ -404,10 +418,17 @@ impl World {
         }
     }
 
-    /// Static edges (as `(a, b, obstacle)`) whose cells overlap the box `lo`-`hi`, each once.
-    pub fn segments_near(&self, lo: DVec2, hi: DVec2, out: &mut Vec<(DVec2, DVec2, u32)>) {
+    /// Static edges (as `(a, b, obstacle)`) whose cells overlap the box `lo`-`hi`, each once;
+    /// `ids` is scratch space (kept between calls, it saves an allocation per query).
+    pub fn segments_near(
+        &self,
+        lo: DVec2,
+        hi: DVec2,
+        ids: &mut Vec<u32>,
+        out: &mut Vec<(DVec2, DVec2, u32)>,
+    ) {
         out.clear();
-        let mut ids: Vec<u32> = Vec::new();
+        ids.clear();
         self.cover(lo, hi, |c| {
             ids.extend(
                 self.statics
@@ -422,6 +443,23 @@ impl World {
             let s = &self.segs[i as usize];
             (s.a, s.b, s.owner)
         }));
+    }
+
+    /// True when `f` is true for some robot whose (slack-widened) cells overlap `lo`-`hi`;
+    /// robots are offered cell by cell, one spanning several cells more than once, and the
+    /// search stops at the first true.
+    pub fn any_robot_near(&self, lo: DVec2, hi: DVec2, f: &mut dyn FnMut(u32) -> bool) -> bool {
+        let s = DVec2::splat(self.slack);
+        let (x0, y0) = self.cell_of(lo - s);
+        let (x1, y1) = self.cell_of(hi + s);
+        for y in y0..=y1 {
+            for x in x0..=x1 {
+                if self.robots.cell(y * self.nx + x).iter().any(|&r| f(r)) {
+                    return true;
+                }
+            }
+        }
+        false
     }
 
     /// Robots other than `skip` whose (slack-widened) cells overlap `lo`-`hi`, ascending.

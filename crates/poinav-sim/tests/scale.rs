@@ -1,7 +1,8 @@
 //! Simulation at scale: a 200-robot scenario gives byte-identical traces and summaries on 1, 2
 //! and 4 threads; `trace every N` keeps exactly every N-th step of the full trace; a run
 //! without a trace has the same summary, expectations and plots as one with it; the trace
-//! streamed to a file equals the one kept in memory.
+//! streamed to a file equals the one kept in memory; a crowd at the single-lane doors decides
+//! as it did before the door check used the robot grid.
 
 use std::path::Path;
 
@@ -144,4 +145,87 @@ fn without_a_trace_summary_expectations_and_plots_are_unchanged() {
         .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
         .collect();
     assert_eq!(names.len(), 5, "{names:?}");
+}
+
+/// 24 robots, three in each of the 8 rooms of a 4-rooms-per-side test building, each driving to
+/// a room across the corridor: they crowd at the single-lane doors.
+fn door_crowd() -> Scenario {
+    let rooms = 4usize;
+    let mut s = format!(
+        "name = \"door-crowd\"\nduration_s = 5.0\n[building]\ndemo = {{ rooms_per_side = {rooms} }}\n"
+    );
+    let mut k = 0;
+    for side in 0..2 {
+        for i in 0..rooms {
+            let x0 = i as f64 * 4.2;
+            let y0 = if side == 0 { 0.0 } else { 6.8 };
+            let heading = if side == 0 { 90.0 } else { -90.0 };
+            for (dx, dy) in [(1.0, 1.0), (3.0, 1.0), (2.0, 2.8)] {
+                k += 1;
+                let room = side * rooms + i;
+                let to = (room + rooms + k % 2) % (2 * rooms);
+                s.push_str(&format!(
+                    "[[robot]]\nname = \"R{k}\"\nstart = {{ x = {}, y = {}, heading_deg = {heading} }}\ncontroller = {{ kind = \"route\", to = \"Room {}\" }}\n",
+                    x0 + dx,
+                    y0 + dy,
+                    to + 1
+                ));
+            }
+        }
+    }
+    Scenario::from_toml(&s, "door-crowd.toml", Path::new(".")).unwrap()
+}
+
+/// The single-lane door check looks robots up in the step's grid instead of testing every
+/// robot; a crowd at the doors decides as it did before that change (the events and distances
+/// below are those of the code that tested every robot, commit 0376b34).
+#[test]
+fn a_crowd_at_the_doors_decides_as_before_the_grid_lookup() {
+    let s = door_crowd();
+    let floor = prepare(&s, None, None).unwrap().floor;
+    let o = run(&s, None, &floor).unwrap();
+    let c2: Vec<(u64, u32)> = o
+        .events()
+        .iter()
+        .filter(|e| e.kind.tag() == "robot-role")
+        .map(|e| (e.step, e.robot[1..].parse().unwrap()))
+        .collect();
+    let want = [
+        (26, 3),
+        (26, 9),
+        (26, 12),
+        (28, 1),
+        (28, 2),
+        (28, 7),
+        (28, 8),
+        (28, 10),
+        (28, 11),
+        (29, 6),
+        (33, 4),
+        (33, 5),
+        (46, 15),
+        (46, 18),
+        (46, 21),
+        (46, 24),
+        (48, 13),
+        (48, 14),
+        (48, 16),
+        (48, 17),
+        (48, 19),
+        (48, 20),
+        (48, 22),
+        (48, 23),
+    ];
+    assert_eq!(c2, want);
+    let travelled: Vec<f64> = o
+        .figures
+        .iter()
+        .map(|f| (f.travelled * 1e6).round() / 1e6)
+        .collect();
+    let want = [
+        1.482519, 1.496381, 2.103326, 1.525808, 1.412349, 2.103045, 1.482519, 1.496381, 2.103326,
+        1.482519, 1.496381, 2.059099, 0.169444, 0.169444, 3.568412, 0.169444, 0.169444, 3.702868,
+        0.169444, 0.169444, 3.702868, 0.169444, 0.169444, 3.702868,
+    ];
+    assert_eq!(travelled, want);
 }
