@@ -1,8 +1,19 @@
 #!/usr/bin/env bash
-# Builds the cargo-fuzz targets and runs each for a bounded time (default 30 s each).
+# Builds the libFuzzer targets in fuzz/ and runs each for a bounded time (default 30 s each).
 # Usage: scripts/fuzz.sh [SECONDS_PER_TARGET] [TARGET...]   (POINAV_FUZZ_SEED, default 1)
-# POINAV_FUZZ_DEV=1 builds without optimisation (with overflow checks): a much shorter build for
-# short smoke runs (scripts/test.sh); long runs keep the default optimised build.
+#
+# No cargo-fuzz needed: the build is plain `cargo build` with the instrumentation flags
+# cargo-fuzz 0.13 passes for `-s none` (SanitizerCoverage: inline 8-bit counters, PC table,
+# compare tracing, stack depth; `--cfg fuzzing`), on the stable toolchain. Targets and corpora
+# keep cargo-fuzz's layout, so `cargo fuzz run -s none TARGET` works too where it is installed.
+#
+# Build modes (POINAV_FUZZ_BUILD):
+#   quick (default): optimised (opt-level 1) with many codegen units: a short build for the
+#                    short runs of scripts/test.sh; executions are about as fast as the full
+#                    mode's for these targets' inputs.
+#   full:            what `cargo fuzz build -O` builds (opt-level 3, one codegen unit): for
+#                    long runs.
+#   dev:             unoptimised, with debug assertions and overflow checks in every crate.
 # Seeds: fuzz/seeds/<target>/ (ours) plus, for the IFC targets, the small corpus files from
 # ../shared/ifc copied into a temporary corpus folder (never into the repository).
 set -euo pipefail
@@ -13,20 +24,32 @@ shift || true
 targets=("$@")
 [[ ${#targets[@]} -gt 0 ]] || targets=(step_reader step_string rules_loader scenario_loader enrichment)
 
-if ! command -v cargo-fuzz >/dev/null 2>&1; then
-    cargo install cargo-fuzz --version 0.13.2 --locked
-fi
-# No sanitizer: the project forbids unsafe code and this keeps to the stable toolchain.
-mode=(-O)
-[[ ${POINAV_FUZZ_DEV:-0} == 1 ]] && mode=(--dev)
-cargo fuzz build -s none "${mode[@]}"
+triple="$(rustc -vV | sed -n 's/^host: //p')"
+flags=(-Cpasses=sancov-module -Cllvm-args=-sanitizer-coverage-level=4
+    -Cllvm-args=-sanitizer-coverage-inline-8bit-counters -Cllvm-args=-sanitizer-coverage-pc-table
+    -Cllvm-args=-sanitizer-coverage-trace-compares -Cllvm-args=-simplifycfg-branch-fold-threshold=0
+    --cfg fuzzing -Clink-dead-code)
+[[ $triple == *-linux-* ]] && flags+=(-Cllvm-args=-sanitizer-coverage-stack-depth)
+build=(--release)
+out=release
+case "${POINAV_FUZZ_BUILD:-quick}" in
+    quick) export CARGO_PROFILE_RELEASE_OPT_LEVEL=1 CARGO_PROFILE_RELEASE_CODEGEN_UNITS=16 \
+        CARGO_PROFILE_RELEASE_DEBUG=line-tables-only ;;
+    full) flags+=(-Ccodegen-units=1) ;;
+    dev) build=(); out=debug; flags+=(-Cdebug-assertions) ;;
+    *) echo "fuzz.sh: POINAV_FUZZ_BUILD is quick, full or dev" >&2; exit 2 ;;
+esac
+# --target keeps the flags away from build scripts and proc macros (as cargo-fuzz does).
+RUSTFLAGS="${flags[*]} ${RUSTFLAGS:-}" CARGO_FUZZ=1 \
+    cargo build --locked --bins --target "$triple" "${build[@]}"
+bin="$root/fuzz/target/$triple/$out"
 
 shared="${POINAV_SHARED:-$root/../shared}"
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 for t in "${targets[@]}"; do
     corpus="$work/$t"
-    mkdir -p "$corpus"
+    mkdir -p "$corpus" "$root/fuzz/artifacts/$t"
     cp "seeds/$t"/* "$corpus/"
     if [[ $t == step_reader || $t == enrichment ]]; then
         for f in "$shared"/ifc/wall-opening-window-ifc4x3.ifc "$shared"/ifc/ramps-extract.ifc; do
@@ -34,6 +57,8 @@ for t in "${targets[@]}"; do
         done
     fi
     echo "fuzz: $t for ${seconds}s"
-    # A fixed seed: every run explores the same inputs first, so CI is reproducible.
-    cargo fuzz run -s none "${mode[@]}" "$t" "$corpus" -- -seed="${POINAV_FUZZ_SEED:-1}" -max_total_time="$seconds" -max_len=65536 -timeout=10 -rss_limit_mb=2048 2>&1 | tail -n 3
+    # A fixed seed: every run explores the same inputs first, so CI is reproducible. A crash
+    # exits non-zero (pipefail) and leaves its input in fuzz/artifacts/<target>/.
+    "$bin/$t" "$corpus" -artifact_prefix="$root/fuzz/artifacts/$t/" -seed="${POINAV_FUZZ_SEED:-1}" \
+        -max_total_time="$seconds" -max_len=65536 -timeout=10 -rss_limit_mb=2048 2>&1 | tail -n 3
 done

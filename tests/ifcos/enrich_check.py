@@ -12,6 +12,8 @@ Prints one JSON object:
   "new_errors": ifcopenshell.validate errors of ENRICHED that ORIGINAL does not have
                 (compared as multisets of the messages validate.py prints, with the
                 FILE_NAME entry quoted in header errors left out, as its time stamp changes).
+                Only the instances enrichment can have changed are validated (see `touched`):
+                the same verdict as validating both whole files, in a fraction of the time.
 Exit 1 if a file cannot be opened.
 """
 
@@ -36,10 +38,65 @@ def normalise(message):
     return "\n".join(line for line in message.split("\n") if not re.fullmatch(r"\s*\^+\s*", line))
 
 
-def errors(f):
-    logger = ifcopenshell.validate.json_logger()
-    ifcopenshell.validate.validate(f, logger)
+def errors(f, ids):
+    """validate.py's errors for the header and the instances `ids` of `f`.
+
+    validate() checks each instance by its own attribute values and its inverse attributes'
+    cardinalities, plus GlobalId uniqueness among the instances it visits; it visits what
+    iterating the file yields, so `f` is given a class whose iteration yields `ids` only."""
+
+    class Only(type(f)):
+        def __iter__(self):
+            return iter(self.by_id(i) for i in ids)
+
+    original = f.__class__
+    f.__class__ = Only
+    try:
+        logger = ifcopenshell.validate.json_logger()
+        ifcopenshell.validate.validate(f, logger)
+    finally:
+        f.__class__ = original
     return collections.Counter(normalise(describe(s)) for s in logger.statements if s.get("level") == "error")
+
+
+def referenced(f, ids):
+    """The ids of the instances that the instances `ids` of `f` refer to directly."""
+    out = set()
+    for i in ids:
+        for value in f.by_id(i):
+            stack = [value]
+            while stack:
+                v = stack.pop()
+                if isinstance(v, ifcopenshell.entity_instance):
+                    if v.id():
+                        out.add(v.id())
+                elif isinstance(v, (tuple, list)):
+                    stack.extend(v)
+    return out
+
+
+def touched(before, after):
+    """The instances whose validation can differ between BEFORE and AFTER, given that every
+    instance of BEFORE is in AFTER unchanged or removed (the Rust side asserts it byte for
+    byte): the added ones, and those an added or removed instance refers to (their inverse
+    attributes change). Everything else has the same attributes and the same inverses."""
+    old = {e.id() for e in before}
+    new = {e.id() for e in after}
+    added, removed = new - old, old - new
+    changed = referenced(after, added) | referenced(before, removed)
+    return sorted(added | (changed & new)), sorted(changed & old & new)
+
+
+def duplicate_guids(before, after):
+    """GlobalIds an added instance shares with any other instance (validate checks uniqueness
+    only among the instances it visits)."""
+    old = {e.id() for e in before}
+    seen = collections.Counter(e.GlobalId for e in after.by_type("IfcRoot"))
+    return sorted(
+        f"GlobalId {e.GlobalId} of #{e.id()} is not unique"
+        for e in after.by_type("IfcRoot")
+        if e.id() not in old and seen[e.GlobalId] > 1
+    )
 
 
 def storey_of(element):
@@ -73,7 +130,11 @@ def main(argv):
             storey = storey_of(element)
             if storey is not None:
                 storeys[element.GlobalId] = storey.Name if (storey.Name or "").strip() else storey.GlobalId
-    new_errors = sorted((errors(after) - errors(before)).elements()) if validate else []
+    new_errors = []
+    if validate:
+        in_after, in_before = touched(before, after)
+        new_errors = sorted((errors(after, in_after) - errors(before, in_before)).elements())
+        new_errors += duplicate_guids(before, after)
     json.dump({"psets": psets, "storeys": storeys, "new_errors": new_errors}, sys.stdout, indent=1, sort_keys=True, default=str)
     sys.stdout.write("\n")
     return 0

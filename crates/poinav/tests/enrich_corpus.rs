@@ -302,3 +302,52 @@ fn lengths_are_stored_in_the_files_unit() {
         assert!(line.contains(height), "{file}: {line}");
     }
 }
+
+/// Guards the IfcOpenShell check itself, which validates only the instances enrichment can
+/// have changed: an added property set without its (IFC2X3-required) owner history and an
+/// added relation reusing a wall's GlobalId must both be reported as new errors.
+#[test]
+fn the_ifcopenshell_check_reports_errors_in_added_instances() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = common::shared().join("ifc/revit-japanese-x2.ifc");
+    let out = dir.path().join("enriched.ifc");
+    enrich(&file, &out, &[]);
+    let mut text = std::fs::read_to_string(&out).unwrap();
+    // The last property set (an added one) loses its owner history.
+    let pset = text.rfind("IFCPROPERTYSET('").unwrap();
+    let owner = pset + text[pset..].find(",#").unwrap() + 1;
+    let owner_end = owner + text[owner..].find(',').unwrap();
+    text.replace_range(owner..owner_end, "$");
+    // The last relation (an added one) takes the first wall's GlobalId.
+    let wall = text.find("IFCWALLSTANDARDCASE('").unwrap() + "IFCWALLSTANDARDCASE('".len();
+    let wall_guid = text[wall..wall + 22].to_owned();
+    let rel =
+        text.rfind("IFCRELDEFINESBYPROPERTIES('").unwrap() + "IFCRELDEFINESBYPROPERTIES('".len();
+    text.replace_range(rel..rel + 22, &wall_guid);
+    let broken = text;
+    let bad = dir.path().join("broken.ifc");
+    std::fs::write(&bad, broken).unwrap();
+    let check = common::ifcos(
+        "enrich_check.py",
+        &[file.as_os_str(), bad.as_os_str(), OsStr::new("Pset_")],
+    );
+    let errors: Vec<&str> = check["new_errors"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|e| e.as_str().unwrap())
+        .collect();
+    assert!(
+        errors
+            .iter()
+            .any(|e| e.contains("IfcPropertySet.OwnerHistory: Attribute not optional")),
+        "{errors:?}"
+    );
+    assert!(
+        errors
+            .iter()
+            .any(|e| e.starts_with(&format!("GlobalId {wall_guid} of #"))
+                && e.ends_with("is not unique")),
+        "{errors:?}"
+    );
+}
