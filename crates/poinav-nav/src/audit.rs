@@ -180,11 +180,23 @@ pub fn audit(
     profiles: &[RobotProfile],
     options: &AuditOptions,
 ) -> Result<AuditReport, NavError> {
+    audit_with_progress(building, profiles, options, &crate::progress::none)
+}
+
+/// [`audit`], telling `progress` about each storey rasterised and the graph, per profile.
+pub fn audit_with_progress(
+    building: &Building,
+    profiles: &[RobotProfile],
+    options: &AuditOptions,
+    progress: crate::progress::Progress<'_>,
+) -> Result<AuditReport, NavError> {
     let mut out = Vec::new();
     let mut gave_up = Vec::new();
     for p in profiles {
-        let nav = Navigator::new(building, p, &options.nav)?;
+        let nav = Navigator::with_progress(building, p, &options.nav, progress)?;
+        progress(crate::progress::Phase::Auditing, out.len(), profiles.len());
         out.push(audit_profile(&nav, options.start.as_deref())?);
+        progress(crate::progress::Phase::Auditing, out.len(), profiles.len());
         gave_up.extend(nav.gave_up);
     }
     gave_up.sort();

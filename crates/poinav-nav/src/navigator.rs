@@ -125,7 +125,9 @@ impl<'a> Navigator<'a> {
             });
             progress(Phase::Rasterising, floors.len(), n);
         }
-        progress(Phase::Graph, 0, 1);
+        // The graph: what each door node's grid says, node by node.
+        let total = topology.nodes.len();
+        progress(Phase::Graph, 0, total);
         // A door whose side without a zone is walled in is no entrance (the grid found it).
         // A door the grid gave up on is no entrance and not passable either.
         for d in &mut topology.doors {
@@ -139,16 +141,23 @@ impl<'a> Navigator<'a> {
         let grid_passable: Vec<bool> = topology
             .nodes
             .iter()
-            .map(|n| match n.kind {
-                NodeKind::Door => {
-                    let outside = topology
-                        .door(n.floor, n.index)
-                        .and_then(|d| d.outside_side());
-                    floors[n.floor].grid.door_passable(n.index, outside)
+            .map(|n| {
+                let passable = match n.kind {
+                    NodeKind::Door => {
+                        let outside = topology
+                            .door(n.floor, n.index)
+                            .and_then(|d| d.outside_side());
+                        floors[n.floor].grid.door_passable(n.index, outside)
+                    }
+                    _ => true,
+                };
+                if n.kind == NodeKind::Door {
+                    progress(Phase::Graph, n.id + 1, total);
                 }
-                _ => true,
+                passable
             })
             .collect();
+        progress(Phase::Graph, total, total);
         let pending = options.grid.pending_doors_open;
         let open = status
             .iter()

@@ -341,13 +341,14 @@ pub fn audit(args: &AuditArgs) -> anyhow::Result<ExitCode> {
     }
     crate::progress::stage("auditing");
     let grid_options = nav.grid.clone();
-    let mut report = poinav_nav::audit(
+    let mut report = poinav_nav::audit::audit_with_progress(
         &building,
         &profiles,
         &AuditOptions {
             nav,
             start: args.start.clone(),
         },
+        &nav_progress,
     )?;
     // Its warnings name them too; the summary here groups them.
     crate::warnings::print(&crate::warnings::gave_up(&report.gave_up));
