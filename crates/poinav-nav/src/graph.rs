@@ -301,6 +301,7 @@ pub fn geometric_door_zones(floor: &Floor, door: usize) -> [Option<usize>; 2] {
             .zones
             .iter()
             .enumerate()
+            .filter(|(_, z)| z.ring.len() <= crate::bounds::ELEMENT_VERTICES)
             .map(|(k, z)| (polygon::area_distance(&z.ring, d.center), k))
             .filter(|(dist, _)| *dist <= SIDE_PROBE_M)
             .collect();
@@ -423,6 +424,7 @@ impl Topology {
                         .zones
                         .iter()
                         .enumerate()
+                        .filter(|(_, z)| z.ring.len() <= crate::bounds::ELEMENT_VERTICES)
                         .map(|(k, z)| (polygon::area_distance(&z.ring, l.point), k))
                         .filter(|(d, _)| *d <= SIDE_PROBE_M)
                         .min_by(|a, b| a.0.total_cmp(&b.0))

@@ -180,8 +180,8 @@ pub struct OccupancyGrid {
     pub door: Vec<u32>,
     /// Per door of the floor: status, reason, open or closed.
     pub doors: Vec<GridDoor>,
-    /// The elements rasterising gave up on ([`crate::bounds`]), in floor order: obstacles,
-    /// zones, doors.
+    /// The elements rasterising gave up on ([`crate::bounds`]): zones, obstacles and doors,
+    /// each in floor order.
     pub gave_up: Vec<GaveUp>,
 }
 

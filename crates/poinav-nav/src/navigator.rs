@@ -253,8 +253,30 @@ impl<'a> Navigator<'a> {
             .iter()
             .filter(|o| &o.id != own)
             .filter_map(|o| {
-                let d = o
-                    .rings
+                // An element past the vertex bound stands as its bounding box, as in the grid.
+                let vertices: usize = o.rings.iter().map(Vec::len).sum();
+                let boxed: Vec<Vec<glam::DVec2>>;
+                let rings = if vertices > crate::bounds::ELEMENT_VERTICES {
+                    boxed = o
+                        .rings
+                        .iter()
+                        .filter_map(|r| crate::polygon::bounds(r))
+                        .reduce(|(a, b), (c, d)| (a.min(c), b.max(d)))
+                        .map(|(lo, hi)| {
+                            vec![
+                                lo,
+                                glam::DVec2::new(hi.x, lo.y),
+                                hi,
+                                glam::DVec2::new(lo.x, hi.y),
+                            ]
+                        })
+                        .into_iter()
+                        .collect();
+                    &boxed
+                } else {
+                    &o.rings
+                };
+                let d = rings
                     .iter()
                     .map(|r| crate::polygon::ring_distance(r, &way))
                     .fold(f64::INFINITY, f64::min);
