@@ -17,8 +17,10 @@ use crate::polygon;
 pub const ELEMENT_VERTICES: usize = 100_000;
 
 /// Most edge-row tests filling one element may take (200,000,000): its vertices times the
-/// grid rows its bounding box spans, the cost of the even-odd scanline fill. About 0.3 s on
-/// one core; a 1,000-vertex outline across a 100 m storey at 5 cm (2,000 rows) takes 2,000,000.
+/// grid rows its bounding box spans, the cost of the even-odd scanline fill (every edge is
+/// tested on every row). Measured in a release build on the shared 2-core machine: 100,000
+/// vertices over 2,020 rows (2.0e8 tests) fill in 0.82 s, against 0.04 s for a 1,000-vertex
+/// outline over the same rows (2,000,000 tests, a real element across a 100 m storey at 5 cm).
 pub const RASTER_WORK: u64 = 200_000_000;
 
 /// Most zone vertices a door's side search may test (100,000): the zones whose bounding boxes
