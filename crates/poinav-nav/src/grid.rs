@@ -121,7 +121,8 @@ fn door_bound(
         return Some((Stage::Graph, b.clone()));
     }
     let bbox = polygon::bounds(&d.ring)?;
-    if let Some(b) = bounds::raster_bound(d.ring.len(), rows(bbox), limits) {
+    let work = d.ring.len() as u64 * rows(bbox) as u64;
+    if let Some(b) = bounds::raster_bound(d.ring.len(), work, limits) {
         return Some((Stage::Raster, b));
     }
     let diag = (bbox.1 - bbox.0).length();
@@ -383,8 +384,12 @@ impl OccupancyGrid {
         // Past a bound: the bound and the element's bounding box.
         let past = |rings: &[Vec<DVec2>]| {
             let vertices = rings.iter().map(Vec::len).sum();
+            let work = rings
+                .iter()
+                .filter_map(|r| Some(r.len() as u64 * rows(polygon::bounds(r)?) as u64))
+                .sum();
             let bbox = rings_bounds(rings)?;
-            bounds::raster_bound(vertices, rows(bbox), limits).map(|b| (b, bbox))
+            bounds::raster_bound(vertices, work, limits).map(|b| (b, bbox))
         };
         let mut gave_up: Vec<GaveUp> = Vec::new();
         let mut note = |element: &str, class: &str, stage: Stage, bound: String, outcome: &str| {
@@ -434,8 +439,10 @@ impl OccupancyGrid {
             }
             for (d, sides) in floor.doors.iter().zip(&door_sides) {
                 let vertices = d.ring.len();
-                let too_big = polygon::bounds(&d.ring)
-                    .is_some_and(|b| bounds::raster_bound(vertices, rows(b), limits).is_some());
+                let too_big = polygon::bounds(&d.ring).is_some_and(|b| {
+                    bounds::raster_bound(vertices, vertices as u64 * rows(b) as u64, limits)
+                        .is_some()
+                });
                 if sides.is_some() || too_big {
                     continue;
                 }

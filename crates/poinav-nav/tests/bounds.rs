@@ -179,14 +179,16 @@ fn an_obstacle_past_the_vertex_bound_is_unknown_over_its_box_and_named() {
 
 #[test]
 fn an_obstacle_past_the_work_bound_is_unknown_and_the_bound_named() {
-    // Lowered bound: a 4-vertex column spanning 20 rows is 80 edge-row tests.
+    // Lowered bound: a column of two rectangles, one spanning 20 rows and one 10, is
+    // 4 x 20 + 4 x 10 = 120 edge-row tests.
     let mut floor = two_rooms(4);
-    floor
-        .obstacles
-        .push(wall("column", vec![rect(1.0, 1.0, 1.5, 2.0)]));
+    floor.obstacles.push(wall(
+        "column",
+        vec![rect(1.0, 1.0, 1.5, 2.0), rect(3.0, 1.0, 3.5, 1.5)],
+    ));
     let options = GridOptions {
         bounds: StageBounds {
-            raster_work: 79,
+            raster_work: 119,
             ..StageBounds::default()
         },
         ..GridOptions::default()
@@ -194,9 +196,10 @@ fn an_obstacle_past_the_work_bound_is_unknown_and_the_bound_named() {
     let g = grid(&floor, &options);
     let column: Vec<_> = g.gave_up.iter().filter(|d| d.element == "column").collect();
     assert_eq!(column.len(), 1);
-    assert_eq!(column[0].bound, "raster work: 80 > 79");
-    let (cells, counts) = in_box(&g, DVec2::new(1.0, 1.0), DVec2::new(1.5, 2.0));
-    assert_eq!((cells, counts), (200, [0, 0, 200]));
+    assert_eq!(column[0].bound, "raster work: 120 > 119");
+    // Its bounding box, 1..3.5 x 1..2 m: 50 x 20 cells, all unknown.
+    let (cells, counts) = in_box(&g, DVec2::new(1.0, 1.0), DVec2::new(3.5, 2.0));
+    assert_eq!((cells, counts), (1000, [0, 0, 1000]));
 }
 
 #[test]
