@@ -167,6 +167,9 @@ pub struct AuditReport {
     pub levels: Vec<crate::level::FloorLevel>,
     /// What limits the audit ([`Building::diagnostics`]: storeys without spaces).
     pub warnings: Vec<String>,
+    /// The elements rasterising and the graph gave up on for any profile ([`crate::bounds`]),
+    /// sorted, each once; their messages are in `warnings` too.
+    pub gave_up: Vec<crate::bounds::GaveUp>,
     /// Per profile, in the order given.
     pub profiles: Vec<ProfileAudit>,
 }
@@ -177,15 +180,34 @@ pub fn audit(
     profiles: &[RobotProfile],
     options: &AuditOptions,
 ) -> Result<AuditReport, NavError> {
+    audit_with_progress(building, profiles, options, &crate::progress::none)
+}
+
+/// [`audit`], telling `progress` about each storey rasterised and the graph, per profile.
+pub fn audit_with_progress(
+    building: &Building,
+    profiles: &[RobotProfile],
+    options: &AuditOptions,
+    progress: crate::progress::Progress<'_>,
+) -> Result<AuditReport, NavError> {
     let mut out = Vec::new();
+    let mut gave_up = Vec::new();
     for p in profiles {
-        let nav = Navigator::new(building, p, &options.nav)?;
+        let nav = Navigator::with_progress(building, p, &options.nav, progress)?;
+        progress(crate::progress::Phase::Auditing, out.len(), profiles.len());
         out.push(audit_profile(&nav, options.start.as_deref())?);
+        progress(crate::progress::Phase::Auditing, out.len(), profiles.len());
+        gave_up.extend(nav.gave_up);
     }
+    gave_up.sort();
+    gave_up.dedup();
+    let mut warnings = building.diagnostics();
+    warnings.extend(gave_up.iter().map(crate::bounds::GaveUp::message));
     Ok(AuditReport {
         floors: building.floors.iter().map(|f| f.name.clone()).collect(),
         levels: building.levels.clone(),
-        warnings: building.diagnostics(),
+        warnings,
+        gave_up,
         profiles: out,
     })
 }

@@ -127,6 +127,11 @@ pub struct DoorSides {
     /// ([`crate::FloorDoor::terrain`]): on a storey not at ground level it is an entrance all
     /// the same ([`Entrance::Terrain`]).
     pub terrain: bool,
+    /// Deciding its sides or rasterising it passed a bound ([`crate::bounds`]): its sides are
+    /// not known ([`DoorSides::zones`] are both `None`, no edges), it is no entrance and not
+    /// passable. Set by [`Topology::build_with`] and by [`crate::Navigator`] from
+    /// [`crate::grid::GridDoor::gave_up`].
+    pub gave_up: bool,
 }
 
 impl DoorSides {
@@ -148,7 +153,7 @@ impl DoorSides {
 
     /// The side (-1 or +1 along the frame's normal) that leads outside, for an exterior door.
     pub fn outside_side(&self) -> Option<f64> {
-        if self.doorless || self.walled_in || self.off_ground {
+        if self.doorless || self.walled_in || self.off_ground || self.gave_up {
             return None;
         }
         match self.zones {
@@ -180,11 +185,15 @@ pub struct Topology {
 /// How far beyond a door's faces zones are looked for, metres.
 pub const SIDE_PROBE_M: f64 = 0.5;
 
-/// The first zone (in floor order) containing `p`.
+/// The first zone (in floor order) containing `p`, among zones within
+/// [`crate::bounds::ELEMENT_VERTICES`].
 pub fn zone_at(floor: &Floor, p: DVec2) -> Option<usize> {
     floor.zones.iter().position(|z| {
-        polygon::bounds(&z.ring)
-            .is_some_and(|(lo, hi)| p.x >= lo.x && p.y >= lo.y && p.x <= hi.x && p.y <= hi.y)
+        // A zone past the vertex bound is unknown in the grid, and doors near it are
+        // undecided ([`crate::bounds::door_side_bounds`]): no search pays for its vertices.
+        z.ring.len() <= crate::bounds::ELEMENT_VERTICES
+            && polygon::bounds(&z.ring)
+                .is_some_and(|(lo, hi)| p.x >= lo.x && p.y >= lo.y && p.x <= hi.x && p.y <= hi.y)
             && polygon::contains(&z.ring, p)
     })
 }
@@ -292,6 +301,7 @@ pub fn geometric_door_zones(floor: &Floor, door: usize) -> [Option<usize>; 2] {
             .zones
             .iter()
             .enumerate()
+            .filter(|(_, z)| z.ring.len() <= crate::bounds::ELEMENT_VERTICES)
             .map(|(k, z)| (polygon::area_distance(&z.ring, d.center), k))
             .filter(|(dist, _)| *dist <= SIDE_PROBE_M)
             .collect();
@@ -302,8 +312,15 @@ pub fn geometric_door_zones(floor: &Floor, door: usize) -> [Option<usize>; 2] {
 }
 
 impl Topology {
-    /// Builds the topology of `building` from its geometry.
+    /// Builds the topology of `building` from its geometry, within the default bounds.
     pub fn build(building: &Building) -> Topology {
+        Topology::build_with(building, &crate::bounds::StageBounds::default())
+    }
+
+    /// Builds the topology of `building` from its geometry; a door whose side search would
+    /// pass `bounds` ([`crate::bounds::door_side_bounds`]) joins no zone and is marked
+    /// [`DoorSides::gave_up`].
+    pub fn build_with(building: &Building, bounds: &crate::bounds::StageBounds) -> Topology {
         let mut nodes = Vec::new();
         let mut zone_nodes = Vec::new();
         for (fi, floor) in building.floors.iter().enumerate() {
@@ -328,8 +345,14 @@ impl Topology {
         let mut edges = Vec::new();
         let mut doors = Vec::new();
         for (fi, floor) in building.floors.iter().enumerate() {
+            let undecided = crate::bounds::door_side_bounds(floor, bounds);
             for (k, d) in floor.doors.iter().enumerate() {
-                let p = floor.door_frame(k).map_or(d.center, |f| f.center);
+                let gave_up = undecided[k].is_some();
+                let p = if gave_up {
+                    d.frame().map_or(d.center, |f| f.center)
+                } else {
+                    floor.door_frame(k).map_or(d.center, |f| f.center)
+                };
                 let node = nodes.len();
                 nodes.push(Node {
                     id: node,
@@ -342,7 +365,11 @@ impl Topology {
                     y: p.y,
                     roles: d.roles.clone(),
                 });
-                let zones = door_zones(floor, k);
+                let zones = if gave_up {
+                    [None, None]
+                } else {
+                    door_zones(floor, k)
+                };
                 let mut linked: Vec<usize> = zones.iter().flatten().copied().collect();
                 linked.dedup();
                 for z in linked {
@@ -369,6 +396,7 @@ impl Topology {
                     walled_in: false,
                     off_ground: !building.at_ground(fi) && !floor.doors[k].terrain,
                     terrain: !building.at_ground(fi) && floor.doors[k].terrain,
+                    gave_up,
                 });
             }
         }
@@ -396,6 +424,7 @@ impl Topology {
                         .zones
                         .iter()
                         .enumerate()
+                        .filter(|(_, z)| z.ring.len() <= crate::bounds::ELEMENT_VERTICES)
                         .map(|(k, z)| (polygon::area_distance(&z.ring, l.point), k))
                         .filter(|(d, _)| *d <= SIDE_PROBE_M)
                         .min_by(|a, b| a.0.total_cmp(&b.0))

@@ -14,6 +14,7 @@ use glam::DVec2;
 use poinav_poi::{AccessibilityStatus, RobotProfile};
 use serde::Serialize;
 
+use crate::bounds::{self, GaveUp, Stage, StageBounds};
 use crate::building::{door_status, passable};
 use crate::floor::{Floor, ObstacleKind};
 use crate::polygon::{self, PassageFrame};
@@ -75,6 +76,8 @@ pub struct GridOptions {
     /// [`crate::Building::at_ground`]): such a door leads onto a balcony or a drop and gets
     /// none, unless it opens onto the terrain ([`crate::FloorDoor::terrain`]).
     pub at_ground: bool,
+    /// Size bounds per element ([`StageBounds`]; the defaults are [`crate::bounds`]'s).
+    pub bounds: StageBounds,
 }
 
 impl Default for GridOptions {
@@ -88,8 +91,49 @@ impl Default for GridOptions {
             fill_enclosed: true,
             entrance_apron_m: 1.0,
             at_ground: true,
+            bounds: StageBounds::default(),
         }
     }
+}
+
+/// Most cells of one storey's grid (400,000,000: 1.6 GB of cell states, zone and door
+/// indices and clearances at 5 cm is a 1 km square). Inflation, the enclosed fill and the
+/// open-boundary scan are linear in cells, so this bounds them too.
+pub const MAX_CELLS: usize = 400_000_000;
+
+/// A closed rectangle ring from its corners.
+fn rect_ring(lo: DVec2, hi: DVec2) -> Vec<DVec2> {
+    vec![lo, DVec2::new(hi.x, lo.y), hi, DVec2::new(lo.x, hi.y)]
+}
+
+/// The bound door `d` passes, if any: its side search ([`bounds::door_side_bounds`], given
+/// as `sides`), filling its ring, or the cells of the search through its passage (a square
+/// around its frame's centre as wide as its diagonal and the reach either side, see
+/// [`NavGrid::door_passable`] and the exact clearance through it).
+fn door_bound(
+    d: &crate::floor::FloorDoor,
+    sides: &Option<String>,
+    rows: &dyn Fn((DVec2, DVec2)) -> usize,
+    limits: &StageBounds,
+    res: f64,
+) -> Option<(Stage, String)> {
+    if let Some(b) = sides {
+        return Some((Stage::Graph, b.clone()));
+    }
+    let bbox = polygon::bounds(&d.ring)?;
+    let work = d.ring.len() as u64 * rows(bbox) as u64;
+    if let Some(b) = bounds::raster_bound(d.ring.len(), work, limits) {
+        return Some((Stage::Raster, b));
+    }
+    let diag = (bbox.1 - bbox.0).length();
+    let side = (diag + 2.0 * (PASSAGE_REACH_M + 3.0 * res)) / res + 3.0;
+    let cells = side * side;
+    (cells > limits.door_cells as f64).then(|| {
+        (
+            Stage::Graph,
+            format!("passage cells: {} > {}", cells as u64, limits.door_cells),
+        )
+    })
 }
 
 /// One door as the grid saw it.
@@ -113,6 +157,9 @@ pub struct GridDoor {
     /// courtyard; found only with [`GridOptions::fill_enclosed`]). It gets no apron and is no
     /// entrance.
     pub walled_in: bool,
+    /// Rasterising or deciding its sides passed a bound ([`crate::bounds`]): its bounding box
+    /// is unknown, it is closed, has no frame, gets no apron and is no entrance.
+    pub gave_up: bool,
 }
 
 /// A storey rasterised for one robot profile.
@@ -134,6 +181,9 @@ pub struct OccupancyGrid {
     pub door: Vec<u32>,
     /// Per door of the floor: status, reason, open or closed.
     pub doors: Vec<GridDoor>,
+    /// The elements rasterising gave up on ([`crate::bounds`]): zones, obstacles and doors,
+    /// each in floor order.
+    pub gave_up: Vec<GaveUp>,
 }
 
 fn paint(
@@ -204,7 +254,11 @@ pub fn entrance_aprons(
         return Vec::new();
     }
     let mut out = Vec::new();
+    let undecided = bounds::door_side_bounds(floor, &options.bounds);
     for (k, d) in floor.doors.iter().enumerate() {
+        if undecided[k].is_some() {
+            continue;
+        }
         if options.doors_by_status
             && !passable(door_status(d, profile).0, options.pending_doors_open)
         {
@@ -296,17 +350,71 @@ impl OccupancyGrid {
     ) -> Result<OccupancyGrid, NavError> {
         let n = width
             .checked_mul(height)
-            .filter(|n| *n <= 400_000_000)
+            .filter(|n| *n <= MAX_CELLS)
             .ok_or_else(|| {
                 NavError::Invalid(format!(
-                    "a {width} x {height} grid is too large: raise the resolution"
+                    "storey {}: a {width} x {height} grid is more than {MAX_CELLS} cells: \
+                     raise the resolution",
+                    floor.name
                 ))
             })?;
         let mut cells = vec![CellState::Unknown; n];
         let mut zone = vec![NONE; n];
         let mut door = vec![NONE; n];
 
+        let limits = &options.bounds;
+        // Rows of the grid a box spans (cell centres inside it), for the raster work bound.
+        let rows = |(lo, hi): (DVec2, DVec2)| {
+            let r0 = ((lo.y - origin.y) / res - 0.5).ceil().max(0.0);
+            let r1 = ((hi.y - origin.y) / res - 0.5)
+                .floor()
+                .min(height as f64 - 1.0);
+            if r1 >= r0 {
+                (r1 - r0) as usize + 1
+            } else {
+                0
+            }
+        };
+        let rings_bounds = |rings: &[Vec<DVec2>]| {
+            rings
+                .iter()
+                .filter_map(|r| polygon::bounds(r))
+                .reduce(|(a, b), (c, d)| (a.min(c), b.max(d)))
+        };
+        // Past a bound: the bound and the element's bounding box.
+        let past = |rings: &[Vec<DVec2>]| {
+            let vertices = rings.iter().map(Vec::len).sum();
+            let work = rings
+                .iter()
+                .filter_map(|r| Some(r.len() as u64 * rows(polygon::bounds(r)?) as u64))
+                .sum();
+            let bbox = rings_bounds(rings)?;
+            bounds::raster_bound(vertices, work, limits).map(|b| (b, bbox))
+        };
+        let mut gave_up: Vec<GaveUp> = Vec::new();
+        let mut note = |element: &str, class: &str, stage: Stage, bound: String, outcome: &str| {
+            gave_up.push(GaveUp {
+                floor: floor.name.clone(),
+                element: element.to_string(),
+                class: class.to_string(),
+                stage,
+                bound,
+                outcome: outcome.to_string(),
+            })
+        };
+        let obstacle_past: Vec<Option<(String, (DVec2, DVec2))>> =
+            floor.obstacles.iter().map(|o| past(&o.rings)).collect();
+        let zone_past: Vec<Option<(String, (DVec2, DVec2))>> = floor
+            .zones
+            .iter()
+            .map(|z| past(std::slice::from_ref(&z.ring)))
+            .collect();
+        let door_sides = bounds::door_side_bounds(floor, limits);
+
         for (k, z) in floor.zones.iter().enumerate().rev() {
+            if zone_past[k].is_some() {
+                continue;
+            }
             paint(width, height, origin, res, &z.ring, |i| {
                 zone[i] = k as u32;
                 cells[i] = CellState::Free;
@@ -320,12 +428,24 @@ impl OccupancyGrid {
         if options.fill_enclosed {
             // Outside = reachable from the grid's border without crossing obstacles or doors.
             let mut barrier = vec![false; n];
-            for o in &floor.obstacles {
+            // Elements given up on are no barrier: what they would enclose is not known.
+            for (o, past) in floor.obstacles.iter().zip(&obstacle_past) {
+                if past.is_some() {
+                    continue;
+                }
                 for ring in &o.rings {
                     paint(width, height, origin, res, ring, |i| barrier[i] = true);
                 }
             }
-            for d in &floor.doors {
+            for (d, sides) in floor.doors.iter().zip(&door_sides) {
+                let vertices = d.ring.len();
+                let too_big = polygon::bounds(&d.ring).is_some_and(|b| {
+                    bounds::raster_bound(vertices, vertices as u64 * rows(b) as u64, limits)
+                        .is_some()
+                });
+                if sides.is_some() || too_big {
+                    continue;
+                }
                 paint(width, height, origin, res, &d.ring, |i| barrier[i] = true);
             }
             let mut outside = vec![false; n];
@@ -366,8 +486,26 @@ impl OccupancyGrid {
                 }
             }
         }
+        // A zone given up on is unknown over its bounding box, but for other zones' cells.
+        for (k, z) in floor.zones.iter().enumerate() {
+            let Some((bound, (lo, hi))) = &zone_past[k] else {
+                continue;
+            };
+            paint(width, height, origin, res, &rect_ring(*lo, *hi), |i| {
+                if zone[i] == NONE && cells[i] == CellState::Free {
+                    cells[i] = CellState::Unknown;
+                }
+            });
+            note(
+                &z.id,
+                "IfcSpace",
+                Stage::Raster,
+                bound.clone(),
+                "left out of the zones; its bounding box is unknown",
+            );
+        }
 
-        for o in &floor.obstacles {
+        for (oi, o) in floor.obstacles.iter().enumerate() {
             let state = match o.kind {
                 ObstacleKind::Furniture => furniture_state,
                 ObstacleKind::Unknown => CellState::Unknown,
@@ -375,7 +513,28 @@ impl OccupancyGrid {
                     CellState::Occupied
                 }
             };
-            for ring in &o.rings {
+            let box_ring;
+            let rings: &[Vec<DVec2>] = match &obstacle_past[oi] {
+                Some((bound, (lo, hi))) => {
+                    note(
+                        &o.id,
+                        &o.class,
+                        Stage::Raster,
+                        bound.clone(),
+                        "its bounding box is unknown",
+                    );
+                    box_ring = [rect_ring(*lo, *hi)];
+                    &box_ring
+                }
+                None => &o.rings,
+            };
+            // Given up on: unknown, whatever it is.
+            let state = if obstacle_past[oi].is_some() {
+                CellState::Unknown
+            } else {
+                state
+            };
+            for ring in rings {
                 paint(width, height, origin, res, ring, |i| {
                     // Unknown furniture (or element) does not erase walls under it.
                     if state == CellState::Occupied || cells[i] != CellState::Occupied {
@@ -388,6 +547,33 @@ impl OccupancyGrid {
         let mut doors = Vec::with_capacity(floor.doors.len());
         for (k, d) in floor.doors.iter().enumerate() {
             let (status, reason) = door_status(d, profile);
+            let given_up = door_bound(d, &door_sides[k], &rows, limits, res);
+            if let Some((stage, bound)) = given_up {
+                if let Some((lo, hi)) = polygon::bounds(&d.ring) {
+                    paint(width, height, origin, res, &rect_ring(lo, hi), |i| {
+                        if cells[i] != CellState::Occupied {
+                            cells[i] = CellState::Unknown;
+                        }
+                    });
+                }
+                note(
+                    &d.id,
+                    bounds::door_class(floor, k),
+                    stage,
+                    bound,
+                    "closed, no entrance; its bounding box is unknown",
+                );
+                doors.push(GridDoor {
+                    status,
+                    reason,
+                    open: false,
+                    frame: None,
+                    passage_half_width_m: None,
+                    walled_in: false,
+                    gave_up: true,
+                });
+                continue;
+            }
             let open = !options.doors_by_status || passable(status, options.pending_doors_open);
             let frame = floor.door_frame(k);
             let state = if open {
@@ -447,12 +633,13 @@ impl OccupancyGrid {
                 frame,
                 passage_half_width_m,
                 walled_in,
+                gave_up: false,
             });
         }
 
         // Entrance aprons: free cells in front of open exterior doors, outside.
         for (k, ring) in entrance_aprons(floor, profile, options) {
-            if doors[k].walled_in {
+            if doors[k].walled_in || doors[k].gave_up {
                 continue;
             }
             paint(width, height, origin, res, &ring, |i| {
@@ -471,6 +658,7 @@ impl OccupancyGrid {
             zone,
             door,
             doors,
+            gave_up,
         })
     }
 

@@ -7,6 +7,8 @@
 //! - [`grid`]: rasterising a storey ([`OccupancyGrid`]) and inflating it for a robot
 //!   ([`NavGrid`]).
 //! - [`graph`]: the [`Topology`] of zones, doors and landings.
+//! - [`bounds`]: the size bounds of rasterising and the graph; elements past one are unknown
+//!   in the grid, never free, and named ([`GaveUp`]).
 //! - [`navigator`]: a building prepared for one profile ([`Navigator`]); [`route`] plans on it.
 //! - [`space_name`]: which space a GlobalId, Name, LongName or `Name@Storey` selects
 //!   ([`Building::find_space`]); an ambiguous name is an error listing the candidates.
@@ -62,6 +64,7 @@
 //! ```
 
 pub mod audit;
+pub mod bounds;
 pub mod building;
 mod error;
 pub mod extent;
@@ -80,6 +83,7 @@ pub mod speed;
 pub mod svg;
 
 pub use audit::{audit, AuditOptions, AuditReport};
+pub use bounds::{GaveUp, StageBounds};
 pub use building::{Building, ConnectionKind, Landing, VerticalConnection};
 pub use error::NavError;
 pub use floor::{Floor, FloorDoor, FloorObstacle, FloorZone, ObstacleKind};

@@ -124,6 +124,9 @@ pub struct BundleSummary {
     pub building_graph: crate::route_graph::BuildingGraphCounts,
     /// Every file written.
     pub files: Vec<PathBuf>,
+    /// The elements rasterising and the graph gave up on ([`crate::bounds`]): unknown in the
+    /// maps, such doors closed and no entrances.
+    pub gave_up: Vec<crate::bounds::GaveUp>,
 }
 
 /// The binary PGM (P5) of a grid of 8-bit values, first row = largest y.
@@ -363,6 +366,7 @@ fn write_storeys(
         skipped,
         building_graph,
         files,
+        gave_up: nav.gave_up.clone(),
     })
 }
 

@@ -71,6 +71,9 @@ pub struct Navigator<'a> {
     pub grid_passable: Vec<bool>,
     /// Per topology node: passable by status and (doors) in the grid.
     pub open: Vec<bool>,
+    /// The elements rasterising and the graph gave up on ([`crate::bounds`]), storey by
+    /// storey: their areas are unknown, such doors closed and no entrances.
+    pub gave_up: Vec<crate::bounds::GaveUp>,
 }
 
 impl<'a> Navigator<'a> {
@@ -93,7 +96,7 @@ impl<'a> Navigator<'a> {
         use crate::progress::Phase;
         options.speeds.validate().map_err(NavError::Invalid)?;
         progress(Phase::Graph, 0, 1);
-        let mut topology = Topology::build(building);
+        let mut topology = Topology::build_with(building, &options.grid.bounds);
         let status = topology.statuses(building, profile);
         let mut floors = Vec::with_capacity(building.floors.len());
         let n = building.floors.len();
@@ -122,10 +125,15 @@ impl<'a> Navigator<'a> {
             });
             progress(Phase::Rasterising, floors.len(), n);
         }
-        progress(Phase::Graph, 0, 1);
+        // The graph: what each door node's grid says, node by node.
+        let total = topology.nodes.len();
+        progress(Phase::Graph, 0, total);
         // A door whose side without a zone is walled in is no entrance (the grid found it).
+        // A door the grid gave up on is no entrance and not passable either.
         for d in &mut topology.doors {
-            d.walled_in = floors[d.floor].grid.occupancy.doors[d.door].walled_in;
+            let g = &floors[d.floor].grid.occupancy.doors[d.door];
+            d.walled_in = g.walled_in;
+            d.gave_up |= g.gave_up;
         }
         for (fi, f) in floors.iter().enumerate() {
             topology.add_open_boundaries(fi, &f.grid, 2);
@@ -133,21 +141,32 @@ impl<'a> Navigator<'a> {
         let grid_passable: Vec<bool> = topology
             .nodes
             .iter()
-            .map(|n| match n.kind {
-                NodeKind::Door => {
-                    let outside = topology
-                        .door(n.floor, n.index)
-                        .and_then(|d| d.outside_side());
-                    floors[n.floor].grid.door_passable(n.index, outside)
+            .map(|n| {
+                let passable = match n.kind {
+                    NodeKind::Door => {
+                        let outside = topology
+                            .door(n.floor, n.index)
+                            .and_then(|d| d.outside_side());
+                        floors[n.floor].grid.door_passable(n.index, outside)
+                    }
+                    _ => true,
+                };
+                if n.kind == NodeKind::Door {
+                    progress(Phase::Graph, n.id + 1, total);
                 }
-                _ => true,
+                passable
             })
             .collect();
+        progress(Phase::Graph, total, total);
         let pending = options.grid.pending_doors_open;
         let open = status
             .iter()
             .zip(&grid_passable)
             .map(|((s, _), g)| passable(*s, pending) && *g)
+            .collect();
+        let gave_up = floors
+            .iter()
+            .flat_map(|f| f.grid.occupancy.gave_up.iter().cloned())
             .collect();
         Ok(Navigator {
             building,
@@ -158,6 +177,7 @@ impl<'a> Navigator<'a> {
             status,
             grid_passable,
             open,
+            gave_up,
         })
     }
 
@@ -170,7 +190,18 @@ impl<'a> Navigator<'a> {
     /// inflated grid leaves no room for the robot's centre.
     pub fn closed_reason(&self, n: usize) -> String {
         let (s, why) = &self.status[n];
-        if !passable(*s, self.options.grid.pending_doors_open) {
+        let node = &self.topology.nodes[n];
+        let gave_up = node.kind == NodeKind::Door
+            && self
+                .topology
+                .door(node.floor, node.index)
+                .is_some_and(|d| d.gave_up);
+        if gave_up {
+            format!(
+                "{} ({why}) but given up on: a size bound was passed, so it is taken as closed",
+                s.label()
+            )
+        } else if !passable(*s, self.options.grid.pending_doors_open) {
             format!("{}: {why}", s.label())
         } else if !self.grid_passable[n] {
             let blockers = self.in_the_way(n);
@@ -222,8 +253,30 @@ impl<'a> Navigator<'a> {
             .iter()
             .filter(|o| &o.id != own)
             .filter_map(|o| {
-                let d = o
-                    .rings
+                // An element past the vertex bound stands as its bounding box, as in the grid.
+                let vertices: usize = o.rings.iter().map(Vec::len).sum();
+                let boxed: Vec<Vec<glam::DVec2>>;
+                let rings = if vertices > crate::bounds::ELEMENT_VERTICES {
+                    boxed = o
+                        .rings
+                        .iter()
+                        .filter_map(|r| crate::polygon::bounds(r))
+                        .reduce(|(a, b), (c, d)| (a.min(c), b.max(d)))
+                        .map(|(lo, hi)| {
+                            vec![
+                                lo,
+                                glam::DVec2::new(hi.x, lo.y),
+                                hi,
+                                glam::DVec2::new(lo.x, hi.y),
+                            ]
+                        })
+                        .into_iter()
+                        .collect();
+                    &boxed
+                } else {
+                    &o.rings
+                };
+                let d = rings
                     .iter()
                     .map(|r| crate::polygon::ring_distance(r, &way))
                     .fold(f64::INFINITY, f64::min);

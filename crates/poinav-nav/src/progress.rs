@@ -10,15 +10,18 @@ pub enum Phase {
     Graph,
     /// Writing files, per storey.
     Writing,
+    /// Reachability and door checks of the audit, per profile.
+    Auditing,
 }
 
 impl Phase {
-    /// Lower-case name (`rasterising`, `graph`, `writing`).
+    /// Lower-case name (`rasterising`, `graph`, `writing`, `auditing`).
     pub fn label(self) -> &'static str {
         match self {
             Phase::Rasterising => "rasterising",
             Phase::Graph => "graph",
             Phase::Writing => "writing",
+            Phase::Auditing => "auditing",
         }
     }
 }

@@ -244,8 +244,11 @@ fn nav_progress(phase: poinav_nav::Phase, done: usize, total: usize) {
 pub fn route(args: &RouteArgs) -> anyhow::Result<ExitCode> {
     let options = args.grid.nav_options()?;
     let profile = crate::profile(args.profile.as_deref())?;
-    let (building, warnings) = checked_building(&args.file, &profile)?;
+    let (building, mut warnings) = checked_building(&args.file, &profile)?;
     let nav = Navigator::with_progress(&building, &profile, &options, &nav_progress)?;
+    let gave_up = crate::warnings::gave_up(&nav.gave_up);
+    crate::warnings::print(&gave_up);
+    warnings.extend(gave_up);
     crate::progress::stage("routing");
     let from: Place = args.from.parse().map_err(anyhow::Error::msg)?;
     let to: Place = args.to.parse().map_err(anyhow::Error::msg)?;
@@ -338,14 +341,17 @@ pub fn audit(args: &AuditArgs) -> anyhow::Result<ExitCode> {
     }
     crate::progress::stage("auditing");
     let grid_options = nav.grid.clone();
-    let mut report = poinav_nav::audit(
+    let mut report = poinav_nav::audit::audit_with_progress(
         &building,
         &profiles,
         &AuditOptions {
             nav,
             start: args.start.clone(),
         },
+        &nav_progress,
     )?;
+    // Its warnings name them too; the summary here groups them.
+    crate::warnings::print(&crate::warnings::gave_up(&report.gave_up));
     // The report lists the left-out connections too (diagnostics are in it already).
     let dropped: Vec<String> = warnings
         .iter()
@@ -489,7 +495,7 @@ fn bcf_json(
 pub fn nav2(args: &Nav2Args) -> anyhow::Result<ExitCode> {
     let nav = args.grid.nav_options()?;
     let profile = crate::profile(args.profile.as_deref())?;
-    let (building, warnings) = checked_building(&args.file, &profile)?;
+    let (building, mut warnings) = checked_building(&args.file, &profile)?;
     let options = Nav2Options {
         nav,
         ..Nav2Options::default()
@@ -502,6 +508,9 @@ pub fn nav2(args: &Nav2Args) -> anyhow::Result<ExitCode> {
         &nav_progress,
     )?;
     crate::progress::end();
+    let gave_up = crate::warnings::gave_up(&summary.gave_up);
+    crate::warnings::print(&gave_up);
+    warnings.extend(gave_up);
     if args.json {
         let mut json = serde_json::to_value(&summary)?;
         json["warnings"] = crate::warnings::to_json(&warnings);

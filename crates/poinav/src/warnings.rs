@@ -208,6 +208,14 @@ pub fn print(warnings: &[Warning]) {
     });
 }
 
+/// The elements navigation gave up on ([`poinav_nav::bounds`]) as warnings, one per element,
+/// grouped by class, stage, kind of bound and outcome.
+pub fn gave_up(list: &[poinav_nav::GaveUp]) -> Vec<Warning> {
+    list.iter()
+        .map(|g| Warning::of(&g.element, Some(g.class.clone()), g.message()).grouped_by(g.reason()))
+        .collect()
+}
+
 /// The full list for `--json` outputs: `[{"id", "class", "message"}]`.
 pub fn to_json(warnings: &[Warning]) -> serde_json::Value {
     serde_json::to_value(warnings).unwrap_or_default()
