@@ -33,6 +33,7 @@
 //! assert!((f.elongation() - 4.0 / 3.0).abs() < 1e-9);
 //! ```
 
+pub mod alignment_curve;
 mod axis2_placement;
 pub mod boolean;
 pub mod brep;
@@ -49,7 +50,9 @@ pub mod face_set;
 pub mod floor_level;
 pub mod floor_plan;
 pub mod footprint;
+pub mod gradient_curve;
 pub mod half_space;
+pub mod linear_placement;
 pub mod mesh;
 mod parameterized_profile;
 pub mod part_hulls;
@@ -62,6 +65,7 @@ pub mod region;
 pub mod representation;
 pub mod representation_mesh;
 pub mod section;
+pub mod sectioned_solid;
 pub mod surface_style;
 pub mod triangulation;
 mod unit_assignment;

@@ -1,6 +1,6 @@
 //! The items of an `IfcShapeRepresentation` as triangle meshes in the representation's
 //! coordinates (metres): extrusions, faceted breps, surface models, tessellated face sets,
-//! boxes and CSG primitives, boolean results (clipping by half-spaces, differences, unions
+//! boxes and CSG primitives, sectioned solids along alignments, boolean results (clipping by half-spaces, differences, unions
 //! and intersections of solids) and mapped items (nested, with any
 //! `IfcCartesianTransformationOperator`, mirrored or non-uniformly scaled).
 //!
@@ -21,10 +21,12 @@ use crate::cartesian_transformation_operator::transformation;
 use crate::error::{degenerate, missing, required_ref, unsupported, GeomError};
 use crate::extrusion::{extrude, extruded_area_solid};
 use crate::face_set::face_set_mesh;
+use crate::gradient_curve::BasisCurve;
 use crate::half_space::half_space;
 use crate::mesh::Mesh;
 use crate::parameterized_profile::ellipse;
 use crate::profile::ProfileArea;
+use crate::sectioned_solid::sectioned_solid_horizontal;
 use crate::surface_style::item_colour;
 use crate::unit_assignment::Units;
 
@@ -165,6 +167,11 @@ impl ItemMesher {
                 return Err(unsupported(&item, "tapered extrusion"));
             }
             let mesh = extruded_area_solid(item, &self.units)?;
+            self.leaf(&item, mesh, true)
+        } else if item.is_a("IfcSectionedSolidHorizontal") {
+            let directrix = required_ref(&item, "Directrix", "IfcCurve")?;
+            let curve = BasisCurve::read(directrix, &self.units)?;
+            let mesh = sectioned_solid_horizontal(item, &self.units, &curve)?;
             self.leaf(&item, mesh, true)
         } else if item.is_a("IfcManifoldSolidBrep")
             || item.is_a("IfcFaceBasedSurfaceModel")
