@@ -7,7 +7,8 @@ Usage: .venv/bin/python tests/ifcos/alignment.py RAILWAY.ifc OUT.ifc
    circular arc, clothoid, line; a vertical layout of constant gradient, parabolic arc,
    constant gradient; proxies placed along the gradient curve by IfcLinearPlacement at several
    distances and offsets (each a 2 x 1 x 0.5 m box off its origin, so orientation shows), and
-   one IfcSectionedSolidHorizontal over the clothoid and arc.
+   one IfcSectionedSolidHorizontal over the clothoid and arc. The first four proxies are in
+   railway part West, the other three in East, the course in none (no storey, no building).
 2. Meshes them, and a fixed sample of RAILWAY.ifc (IfcOpenShell needs about 1.6 s per track
    element there, so the whole file is out of reach): track elements spread over the track,
    two courses (sectioned solids) and a rail.
@@ -23,10 +24,12 @@ import os
 import sys
 
 import ifcopenshell
+import ifcopenshell.api.aggregate
 import ifcopenshell.api.alignment
 import ifcopenshell.api.context
 import ifcopenshell.api.geometry
 import ifcopenshell.api.root
+import ifcopenshell.api.spatial
 import ifcopenshell.api.unit
 import ifcopenshell.geom
 import numpy as np
@@ -48,7 +51,7 @@ def start_of(end):
 
 def author(path):
     f = ifcopenshell.file(schema="IFC4X3_ADD2")
-    ifcopenshell.api.root.create_entity(f, ifc_class="IfcProject", name="Alignment test")
+    project = ifcopenshell.api.root.create_entity(f, ifc_class="IfcProject", name="Alignment test")
     ifcopenshell.api.unit.assign_unit(
         f,
         units=[
@@ -119,10 +122,17 @@ def author(path):
     shape = f.createIfcProductDefinitionShape(
         Representations=[f.createIfcShapeRepresentation(body, "Body", "SweptSolid", [box])]
     )
+    site = ifcopenshell.api.root.create_entity(f, ifc_class="IfcSite", name="Site")
+    railway = ifcopenshell.api.root.create_entity(f, ifc_class="IfcRailway", name="Line")
+    parts = [ifcopenshell.api.root.create_entity(f, ifc_class="IfcRailwayPart", name=n) for n in ("West", "East")]
+    ifcopenshell.api.aggregate.assign_object(f, products=[site], relating_object=project)
+    ifcopenshell.api.aggregate.assign_object(f, products=[railway], relating_object=site)
+    ifcopenshell.api.aggregate.assign_object(f, products=parts, relating_object=railway)
     for i, (d, lat, ver, lon) in enumerate(PLACED):
         p = ifcopenshell.api.root.create_entity(f, ifc_class="IfcBuildingElementProxy", name=f"at {d}")
         p.ObjectPlacement = f.createIfcLinearPlacement(RelativePlacement=linear(d, lat, ver, lon))
         p.Representation = shape
+        ifcopenshell.api.spatial.assign_container(f, products=[p], relating_structure=parts[i // 4])
     profile = f.createIfcArbitraryClosedProfileDef(
         ProfileType="AREA",
         OuterCurve=f.createIfcPolyline(

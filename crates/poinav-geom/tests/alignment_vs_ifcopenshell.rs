@@ -5,12 +5,14 @@
 //! and their meshes' and a sectioned solid's bounding boxes are within 1 cm; on the corpus's
 //! railway track, every product of a fixed sample IfcOpenShell meshes (track elements spread
 //! over the track, courses and a rail) is meshed here too, boxes within 1 cm, and every track
-//! element's linear placement resolves.
+//! element's linear placement resolves. The authored model has no storey and no building: it
+//! gets a plan per railway part (and one for its site, holding the uncontained course), each
+//! over its whole height.
 
 mod common;
 
 use glam::{DMat3, DVec3};
-use poinav_geom::{mesh_product, PlacementCache};
+use poinav_geom::{floor_plans, mesh_product, PlacementCache, PlanOptions};
 use poinav_ifc::{EntityId, Model};
 use serde_json::Value;
 
@@ -124,6 +126,32 @@ fn alignments_match_ifcopenshell() {
         "axes off by {worst_angle} degrees"
     );
     assert!(worst_box < TOLERANCE, "authored box off by {worst_box} m");
+
+    // Plans per facility part, the proxies' shadows 2 m x 1 m (tilted by at most 2 %).
+    let plans = floor_plans(&model, &PlanOptions::default());
+    let summary: Vec<(String, usize)> = plans
+        .iter()
+        .map(|p| (p.storey_name.clone().unwrap_or_default(), p.items.len()))
+        .collect();
+    assert_eq!(
+        summary,
+        [
+            ("Site".to_string(), 1),
+            ("West".to_string(), 4),
+            ("East".to_string(), 3)
+        ]
+    );
+    for plan in &plans[1..] {
+        for item in &plan.items {
+            assert!(
+                (item.area() - 2.0).abs() < 0.01,
+                "{}: {}",
+                item.global_id,
+                item.area()
+            );
+        }
+    }
+    assert!(plans[0].items[0].area() > 500.0, "the course's shadow");
 
     // The railway sample: all of it meshed by IfcOpenShell, and here, boxes within 1 cm.
     let sample = theirs["railway_sample"].as_array().unwrap();
