@@ -21,7 +21,9 @@
 //! A product belongs to the storey [`poinav_ifc::spatial::storey_of`] finds; a model without
 //! storeys gets one plan for everything, unless it has no building either (IFC4X3
 //! infrastructure): then each spatial element containing products (a railway part, a facility,
-//! a site) gets a plan of everything it contains over its whole height (shadows). Products that have no storey in a model with storeys
+//! a site) gets a plan of everything it contains over its whole height (shadows; products of
+//! at least [`crate::part_hulls::DENSE_TRIANGLES`] triangles by the convex hull of theirs,
+//! [`PlanSource::PartHulls`]). Products that have no storey in a model with storeys
 //! go to the storey they stand on (the highest one at or below their lowest point).
 
 use glam::DVec2;
@@ -358,6 +360,7 @@ pub fn floor_plans_with_progress(
         .zip(members)
         .enumerate()
         .map(|(i, (&(storey, elevation), products))| {
+            let facility_plan = bands.get(i).copied().flatten().is_some();
             let band = bands.get(i).copied().flatten().unwrap_or((
                 elevation + options.band_min_m,
                 elevation + options.band_max_m,
@@ -368,7 +371,15 @@ pub fn floor_plans_with_progress(
                 .map_init(
                     || PlacementCache::new(model),
                     |cache, &p| {
-                        let d = draw(cache, p, band, &options.section, &by_id, &failures);
+                        let d = draw(
+                            cache,
+                            p,
+                            band,
+                            &options.section,
+                            &by_id,
+                            &failures,
+                            facility_plan,
+                        );
                         ticker.tick();
                         d
                     },
@@ -508,6 +519,7 @@ fn draw<'m>(
     bounds: &SectionBounds,
     meshes: &FxHashMap<EntityId, &ElementMesh>,
     failures: &FxHashMap<EntityId, &GeomError>,
+    hull_dense: bool,
 ) -> Drawn {
     let mut out = Drawn::default();
     let Some(kind) = plan_kind(product) else {
@@ -548,6 +560,18 @@ fn draw<'m>(
         {
             (
                 crate::part_hulls::part_hulls(&m.mesh, band.0, band.1),
+                PlanSource::PartHulls,
+                None,
+            )
+        }
+        // In a facility part's plan (its whole height) a dense product (a sleeper with its
+        // fastenings) is drawn by the hull of its shadow: exact sections of thousands of
+        // overlapping parts would cost seconds each, and the hull holds them.
+        Some(m) if hull_dense && m.mesh.triangles.len() >= crate::part_hulls::DENSE_TRIANGLES => {
+            let points: Vec<DVec2> = m.mesh.positions.iter().map(|p| p.truncate()).collect();
+            let hull = crate::polygon::convex_hull(&points);
+            (
+                Region::from_ring(hull).into_iter().collect(),
                 PlanSource::PartHulls,
                 None,
             )

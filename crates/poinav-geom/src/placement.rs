@@ -12,6 +12,7 @@ pub use crate::axis2_placement::{axis2placement, axis2placement_2d, axis2placeme
 use crate::error::{missing, unsupported, GeomError};
 use crate::gradient_curve::BasisCurve;
 use crate::linear_placement::axis2placement_linear;
+use crate::representation_mesh::MappedMeshes;
 use crate::unit_assignment::Units;
 
 /// Longest `PlacementRelTo` chain followed; longer chains (and cycles) are errors.
@@ -33,6 +34,9 @@ pub struct PlacementCache<'m> {
     units: Units,
     resolved: HashMap<EntityId, Resolved>,
     curves: HashMap<EntityId, Result<Arc<BasisCurve>, GeomError>>,
+    /// Mapped representations meshed and directrices read for earlier products (kept here
+    /// so that one cache per thread serves every product [`crate::mesh_model`] gives it).
+    pub(crate) mapped_meshes: MappedMeshes,
 }
 
 impl<'m> PlacementCache<'m> {
@@ -48,6 +52,7 @@ impl<'m> PlacementCache<'m> {
             units,
             resolved: HashMap::new(),
             curves: HashMap::new(),
+            mapped_meshes: MappedMeshes::default(),
         }
     }
 
