@@ -75,12 +75,15 @@ pub struct ItemMesher {
     maps: MappedMeshes,
 }
 
+/// One mapped representation meshed: its parts, the colour its items give, its item count.
+type MappedMesh = (Vec<Part>, Option<[f32; 4]>, usize);
+
 /// What meshing one product leaves for the next ones of the same model: mapped
 /// representations already meshed (by `#id`: their parts in the map's coordinates, the
 /// colour their items give and how many items they hold) and directrices read.
 #[derive(Debug, Default)]
 pub struct MappedMeshes {
-    maps: HashMap<EntityId, (Vec<Part>, Option<[f32; 4]>, usize)>,
+    maps: HashMap<EntityId, MappedMesh>,
     curves: HashMap<EntityId, Arc<BasisCurve>>,
 }
 
