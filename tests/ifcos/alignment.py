@@ -5,7 +5,7 @@ Usage: .venv/bin/python tests/ifcos/alignment.py RAILWAY.ifc OUT.ifc
 
 1. Authors OUT.ifc with ifcopenshell.api.alignment: a horizontal layout of line, clothoid,
    circular arc, clothoid, line; a vertical layout of constant gradient, parabolic arc,
-   constant gradient; proxies placed along the gradient curve by IfcLinearPlacement at several
+   circular arc, constant gradient; proxies placed along the gradient curve by IfcLinearPlacement at several
    distances and offsets (each a 2 x 1 x 0.5 m box off its origin, so orientation shows), and
    one IfcSectionedSolidHorizontal over the clothoid and arc. The first four proxies are in
    railway part West, the other three in East, the course in none (no storey, no building).
@@ -87,7 +87,8 @@ def author(path):
     for kind, start, length, g0, g1 in [
         ("CONSTANTGRADIENT", 0.0, 150.0, 0.02, 0.02),
         ("PARABOLICARC", 150.0, 200.0, 0.02, -0.01),
-        ("CONSTANTGRADIENT", 350.0, 160.0, -0.01, -0.01),
+        ("CIRCULARARC", 350.0, 100.0, -0.01, 0.015),
+        ("CONSTANTGRADIENT", 450.0, 60.0, 0.015, 0.015),
     ]:
         seg = f.createIfcAlignmentVerticalSegment(
             StartDistAlong=start,
