@@ -1,7 +1,8 @@
 //! IFC4X3 alignments agree with IfcOpenShell's (run live, `tests/ifcos/alignment.py`):
 //! proxies placed by `IfcLinearPlacement` along an alignment the test authors with
-//! `ifcopenshell.api.alignment` (line, clothoids, circular arc; constant gradients and a
-//! parabolic arc) sit within 1 cm of IfcOpenShell's placements with axes within 0.1 degree,
+//! `ifcopenshell.api.alignment` (line, clothoids, circular arc; constant gradients, a
+//! parabolic and a circular arc) sit within 1 cm of IfcOpenShell's placements with axes within
+//! 0.1 degree,
 //! and their meshes' and a sectioned solid's bounding boxes are within 1 cm; on the corpus's
 //! railway track, every product of a fixed sample IfcOpenShell meshes (track elements spread
 //! over the track, courses and a rail) is meshed here too, boxes within 1 cm, and every track
