@@ -162,8 +162,12 @@ fn mesh_until<'m>(
 ) -> Result<ElementMesh, GeomError> {
     let placement = cache.product(product)?;
     let rep = body_representation(product)?;
-    let mut mesher = ItemMesher::with_deadline(cache.units(), deadline);
-    let mut parts = mesher.representation(rep)?;
+    let mut mesher = ItemMesher::with_deadline(cache.units(), deadline)
+        .with_maps(std::mem::take(&mut cache.mapped_meshes));
+    let parts = mesher.representation(rep);
+    let colour = mesher.colour;
+    cache.mapped_meshes = mesher.into_maps();
+    let mut parts = parts?;
     let had_triangles = parts.iter().any(|p| !p.mesh.is_empty());
     let openings = openings_of(product);
     if !openings.is_empty() && parts.iter().any(|p| p.closed) {
@@ -225,7 +229,7 @@ fn mesh_until<'m>(
     if !mesh.is_finite() {
         return Err(degenerate(&rep, "coordinates overflow"));
     }
-    let colour = mesher.colour.or_else(|| material_colour(product));
+    let colour = colour.or_else(|| material_colour(product));
     Ok(ElementMesh {
         product: product.id(),
         global_id: product.global_id().unwrap_or_default(),

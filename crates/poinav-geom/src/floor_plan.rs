@@ -19,7 +19,11 @@
 //!   passage ([`PlanItemKind::DoorOpening`], see [`DoorPassage`]).
 //!
 //! A product belongs to the storey [`poinav_ifc::spatial::storey_of`] finds; a model without
-//! storeys gets one plan for everything. Products that have no storey in a model with storeys
+//! storeys gets one plan for everything, unless it has no building either (IFC4X3
+//! infrastructure): then each spatial element containing products (a railway part, a facility,
+//! a site) gets a plan of everything it contains over its whole height (shadows; products of
+//! at least [`crate::part_hulls::DENSE_TRIANGLES`] triangles by the convex hull of theirs,
+//! [`PlanSource::PartHulls`]). Products that have no storey in a model with storeys
 //! go to the storey they stand on (the highest one at or below their lowest point).
 
 use glam::DVec2;
@@ -271,7 +275,22 @@ pub fn floor_plans_with_progress(
         })
         .collect();
     let mut members: Vec<Vec<Entity<'_>>> = vec![Vec::new(); levels.len().max(1)];
-    if levels.is_empty() {
+    // Bands that replace the storey's (facility parts: their whole height).
+    let mut bands: Vec<Option<(f64, f64)>> = Vec::new();
+    let facility = levels.is_empty() && model.instances_of("IfcBuilding").is_empty();
+    let parts = if facility {
+        facility_parts(&products, &by_id)
+    } else {
+        Vec::new()
+    };
+    if !parts.is_empty() {
+        members.clear();
+        for (part, group, (low, high)) in parts {
+            levels.push((part, low));
+            bands.push(Some((low - 0.01, high + 0.01)));
+            members.push(group);
+        }
+    } else if levels.is_empty() {
         let whole = model
             .instances_of("IfcBuilding")
             .into_iter()
@@ -339,18 +358,28 @@ pub fn floor_plans_with_progress(
     levels
         .iter()
         .zip(members)
-        .map(|(&(storey, elevation), products)| {
-            let band = (
+        .enumerate()
+        .map(|(i, (&(storey, elevation), products))| {
+            let facility_plan = bands.get(i).copied().flatten().is_some();
+            let band = bands.get(i).copied().flatten().unwrap_or((
                 elevation + options.band_min_m,
                 elevation + options.band_max_m,
-            );
+            ));
             let drawn: Vec<Drawn> = products
                 .par_iter()
                 .with_min_len(4)
                 .map_init(
                     || PlacementCache::new(model),
                     |cache, &p| {
-                        let d = draw(cache, p, band, &options.section, &by_id, &failures);
+                        let d = draw(
+                            cache,
+                            p,
+                            band,
+                            &options.section,
+                            &by_id,
+                            &failures,
+                            facility_plan,
+                        );
                         ticker.tick();
                         d
                     },
@@ -412,6 +441,51 @@ fn void_items<'m>(
     }
 }
 
+/// A model without storeys or buildings (IFC4X3 infrastructure: a railway, a road): its
+/// products grouped by the spatial element containing them (an `IfcRailwayPart`, a facility,
+/// a site; those in none under the first site, else the project), each group with the height
+/// range of its meshes. Groups without a mesh are left out; in file order of the element.
+fn facility_parts<'m>(
+    products: &[Entity<'m>],
+    by_id: &FxHashMap<EntityId, &ElementMesh>,
+) -> Vec<(Entity<'m>, Vec<Entity<'m>>, (f64, f64))> {
+    let mut groups: Vec<(Entity<'m>, Vec<Entity<'m>>, (f64, f64))> = Vec::new();
+    let fallback = products.first().and_then(|p| {
+        let model = p.model();
+        model
+            .instances_of("IfcSite")
+            .into_iter()
+            .next()
+            .or_else(|| model.instances_of("IfcProject").into_iter().next())
+    });
+    for p in products {
+        let Some((lo, hi)) = by_id.get(&p.id()).and_then(|m| m.mesh.bounds()) else {
+            continue;
+        };
+        let mut container = spatial::parent_of(*p);
+        for _ in 0..64 {
+            match container {
+                Some(c) if !c.is_a("IfcSpatialStructureElement") && !c.is_a("IfcProject") => {
+                    container = spatial::parent_of(c);
+                }
+                _ => break,
+            }
+        }
+        let Some(c) = container.or(fallback) else {
+            continue;
+        };
+        match groups.iter_mut().find(|(e, _, _)| e.id() == c.id()) {
+            Some((_, g, range)) => {
+                g.push(*p);
+                *range = (range.0.min(lo.z), range.1.max(hi.z));
+            }
+            None => groups.push((c, vec![*p], (lo.z, hi.z))),
+        }
+    }
+    groups.sort_by_key(|(e, _, _)| e.position());
+    groups
+}
+
 /// The highest storey whose floor is at or below `z` (1 cm tolerance), else the lowest.
 fn standing_on(levels: &[(Entity<'_>, f64)], z: f64) -> Option<usize> {
     let below = levels
@@ -445,6 +519,7 @@ fn draw<'m>(
     bounds: &SectionBounds,
     meshes: &FxHashMap<EntityId, &ElementMesh>,
     failures: &FxHashMap<EntityId, &GeomError>,
+    hull_dense: bool,
 ) -> Drawn {
     let mut out = Drawn::default();
     let Some(kind) = plan_kind(product) else {
@@ -485,6 +560,18 @@ fn draw<'m>(
         {
             (
                 crate::part_hulls::part_hulls(&m.mesh, band.0, band.1),
+                PlanSource::PartHulls,
+                None,
+            )
+        }
+        // In a facility part's plan (its whole height) a dense product (a sleeper with its
+        // fastenings) is drawn by the hull of its shadow: exact sections of thousands of
+        // overlapping parts would cost seconds each, and the hull holds them.
+        Some(m) if hull_dense && m.mesh.triangles.len() >= crate::part_hulls::DENSE_TRIANGLES => {
+            let points: Vec<DVec2> = m.mesh.positions.iter().map(|p| p.truncate()).collect();
+            let hull = crate::polygon::convex_hull(&points);
+            (
+                Region::from_ring(hull).into_iter().collect(),
                 PlanSource::PartHulls,
                 None,
             )

@@ -34,6 +34,7 @@
 //! ```
 
 pub mod advanced_brep;
+pub mod alignment_curve;
 mod axis2_placement;
 pub mod boolean;
 pub mod brep;
@@ -55,7 +56,9 @@ pub mod face_set;
 pub mod floor_level;
 pub mod floor_plan;
 pub mod footprint;
+pub mod gradient_curve;
 pub mod half_space;
+pub mod linear_placement;
 pub mod loft;
 pub mod mesh;
 pub mod open_profile;
@@ -71,6 +74,7 @@ pub mod representation;
 pub mod representation_mesh;
 pub mod revolve;
 pub mod section;
+pub mod sectioned_solid;
 pub mod surface;
 pub mod surface_style;
 pub mod sweep;

@@ -1,13 +1,18 @@
 //! `IfcObjectPlacement`: the world transform of a product, resolved through `IfcLocalPlacement`
-//! chains, memoised per placement `#id`, safe against cycles, translations in metres.
+//! chains and `IfcLinearPlacement`s along alignments ([`crate::linear_placement`]), memoised per
+//! placement `#id` (basis curves per curve `#id`), safe against cycles, translations in metres.
 
 use std::collections::HashMap;
+use std::sync::Arc;
 
 use glam::DAffine3;
 use poinav_ifc::{Entity, EntityId, Model};
 
 pub use crate::axis2_placement::{axis2placement, axis2placement_2d, axis2placement_3d};
 use crate::error::{missing, unsupported, GeomError};
+use crate::gradient_curve::BasisCurve;
+use crate::linear_placement::axis2placement_linear;
+use crate::representation_mesh::MappedMeshes;
 use crate::unit_assignment::Units;
 
 /// Longest `PlacementRelTo` chain followed; longer chains (and cycles) are errors.
@@ -28,6 +33,10 @@ pub struct PlacementCache<'m> {
     model: &'m Model,
     units: Units,
     resolved: HashMap<EntityId, Resolved>,
+    curves: HashMap<EntityId, Result<Arc<BasisCurve>, GeomError>>,
+    /// Mapped representations meshed and directrices read for earlier products (kept here
+    /// so that one cache per thread serves every product [`crate::mesh_model`] gives it).
+    pub(crate) mapped_meshes: MappedMeshes,
 }
 
 impl<'m> PlacementCache<'m> {
@@ -42,6 +51,8 @@ impl<'m> PlacementCache<'m> {
             model,
             units,
             resolved: HashMap::new(),
+            curves: HashMap::new(),
+            mapped_meshes: MappedMeshes::default(),
         }
     }
 
@@ -90,6 +101,15 @@ impl<'m> PlacementCache<'m> {
                 Ok((t, grid.map(|id| GeomError::GridPlacement { id })))
             }
         }
+    }
+
+    /// The basis curve `curve` (an alignment's `IfcGradientCurve`, ...), read once per `#id`.
+    pub fn basis_curve(&mut self, curve: Entity<'m>) -> Result<Arc<BasisCurve>, GeomError> {
+        let units = self.units;
+        self.curves
+            .entry(curve.id())
+            .or_insert_with(|| BasisCurve::read(curve, &units).map(Arc::new))
+            .clone()
     }
 
     /// The world transform of an `IfcObjectPlacement`.
@@ -141,7 +161,7 @@ impl<'m> PlacementCache<'m> {
 
     /// The transform of one placement relative to its parent (metres), and whether it is a
     /// grid placement taken as the identity.
-    fn local(&self, p: Entity<'m>) -> Result<(DAffine3, bool), GeomError> {
+    fn local(&mut self, p: Entity<'m>) -> Result<(DAffine3, bool), GeomError> {
         if p.is_a("IfcLocalPlacement") {
             let rel = p
                 .get_ref("RelativePlacement")
@@ -149,6 +169,13 @@ impl<'m> PlacementCache<'m> {
             Ok((axis2placement(rel, self.units.metres_per_unit)?, false))
         } else if p.is_a("IfcGridPlacement") {
             Ok((DAffine3::IDENTITY, true))
+        } else if p.is_a("IfcLinearPlacement") {
+            let rel = p
+                .get_ref("RelativePlacement")
+                .ok_or_else(|| missing(&p, "RelativePlacement"))?;
+            let units = self.units;
+            let t = axis2placement_linear(rel, &units, &mut |c| self.basis_curve(c))?;
+            Ok((t, false))
         } else {
             Err(unsupported(&p, "object placement"))
         }
@@ -159,6 +186,10 @@ impl<'m> PlacementCache<'m> {
 fn relative_to<'m>(p: Entity<'m>) -> Result<Option<Entity<'m>>, GeomError> {
     if !p.is_a("IfcObjectPlacement") {
         return Err(unsupported(&p, "expected an IfcObjectPlacement"));
+    }
+    if p.is_a("IfcLinearPlacement") {
+        // The basis curve's coordinates are the world's (as in IfcOpenShell).
+        return Ok(None);
     }
     if p.is_a("IfcGridPlacement") && p.attr_index("PlacementRelTo").is_err() {
         // IFC2X3 grid placements have no PlacementRelTo.

@@ -60,6 +60,7 @@ pub fn clean(points: Vec<DVec2>) -> Option<Vec<DVec2>> {
 /// Fewer than three distinct points give those points.
 pub fn convex_hull(points: &[DVec2]) -> Vec<DVec2> {
     let mut pts: Vec<DVec2> = points.iter().copied().filter(|p| p.is_finite()).collect();
+    drop_interior(&mut pts);
     pts.sort_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
     pts.dedup();
     if pts.len() < 3 {
@@ -85,6 +86,36 @@ pub fn convex_hull(points: &[DVec2]) -> Vec<DVec2> {
         hull.pop();
     }
     hull
+}
+
+/// Removes the points strictly inside the quadrilateral of the leftmost, lowest, rightmost
+/// and highest points (Akl-Toussaint): none of them is on the hull, and for a dense mesh's
+/// vertices they are most, so the sort that follows is short.
+fn drop_interior(pts: &mut Vec<DVec2>) {
+    if pts.len() < 16 {
+        return;
+    }
+    let pick = |better: fn(DVec2, DVec2) -> bool| {
+        pts.iter()
+            .copied()
+            .reduce(|a, b| if better(b, a) { b } else { a })
+    };
+    let (Some(l), Some(b), Some(r), Some(t)) = (
+        pick(|p, q| p.x < q.x),
+        pick(|p, q| p.y < q.y),
+        pick(|p, q| p.x > q.x),
+        pick(|p, q| p.y > q.y),
+    ) else {
+        return;
+    };
+    let quad = [l, b, r, t];
+    let inside = |p: DVec2| {
+        (0..4).all(|i| {
+            let (a, c) = (quad[i], quad[(i + 1) % 4]);
+            (c - a).perp_dot(p - a) > 0.0
+        })
+    };
+    pts.retain(|&p| !inside(p));
 }
 
 /// A rectangle in the plane: centre, unit direction of its first side, and side lengths.
@@ -262,6 +293,23 @@ mod tests {
         assert_eq!(signed_area(&l), 6.0);
         let c = centroid(&l);
         assert!(contains(&l, c));
+    }
+
+    #[test]
+    fn dense_interiors_leave_the_hull_as_it_is() {
+        // 64 points on a circle (some on the extremes' quadrilateral's edges' side), 400 inside.
+        let ring: Vec<DVec2> = (0..64)
+            .map(|i| DVec2::from_angle(i as f64 * std::f64::consts::TAU / 64.0) * 3.0)
+            .collect();
+        let mut all = ring.clone();
+        for i in 0..20 {
+            for j in 0..20 {
+                all.push(DVec2::new(i as f64 * 0.2 - 1.9, j as f64 * 0.2 - 1.9));
+            }
+        }
+        all.reverse();
+        assert_eq!(convex_hull(&all), convex_hull(&ring));
+        assert_eq!(convex_hull(&ring).len(), 64);
     }
 
     #[test]

@@ -12,10 +12,12 @@ use crate::axis2_placement::axis2placement;
 use crate::cartesian_point::{point3, point_list};
 use crate::cartesian_transformation_operator::transformation;
 use crate::error::{degenerate, missing, required_ref, unsupported, GeomError};
+use crate::gradient_curve::BasisCurve;
 use crate::open_profile::is_open_profile_extrusion;
 use crate::polygon;
 use crate::profile;
 use crate::representation_mesh::ItemMesher;
+use crate::sectioned_solid::sectioned_solid_horizontal;
 use crate::swept_area::is_directrix_swept_area_solid;
 use crate::unit_assignment::Units;
 
@@ -234,6 +236,20 @@ fn evaluate_item(
         }
         let g = leaf(face_points(&faces)?)?;
         out.items.push(g);
+        Ok(())
+    } else if item.is_a("IfcSectionedSolidHorizontal") {
+        let directrix = required_ref(&item, "Directrix", "IfcCurve")?;
+        let curve = BasisCurve::read(directrix, units)?;
+        let mesh = sectioned_solid_horizontal(item, units, &curve)?;
+        out.items.push(ItemGeometry {
+            id: item.id(),
+            outline: None,
+            points: mesh
+                .positions
+                .iter()
+                .map(|p| t.transform_point3(*p))
+                .collect(),
+        });
         Ok(())
     } else if item.is_a("IfcTessellatedFaceSet") {
         let list = required_ref(&item, "Coordinates", "IfcCartesianPointList3D")?;

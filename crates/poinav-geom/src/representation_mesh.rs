@@ -1,18 +1,21 @@
 //! The items of an `IfcShapeRepresentation` as triangle meshes in the representation's
 //! coordinates (metres): extrusions (tapered too; of open profiles: surfaces), revolutions,
-//! swept disks and areas swept along a directrix, faceted and advanced breps, surface models,
-//! tessellated face sets, boxes and CSG primitives, boolean results (clipping by half-spaces,
-//! differences, unions and intersections of solids) and mapped items (nested, with any
+//! swept disks and areas swept along a directrix, sectioned solids along alignments, faceted
+//! and advanced breps, surface models, tessellated face sets, boxes and CSG primitives,
+//! boolean results (clipping by half-spaces, differences, unions and intersections of solids)
+//! and mapped items (nested, with any
 //! `IfcCartesianTransformationOperator`, mirrored or non-uniformly scaled).
 //!
 //! Work is bounded: at most [`MAX_ITEMS`] items and [`MAX_TRIANGLES`] triangles per
 //! representation, mapped items nested at most [`MAX_DEPTH`] deep, boolean chains at most
 //! [`MAX_BOOLEAN_CHAIN`] long; past that the representation is an error.
 
+use std::collections::HashMap;
+use std::sync::Arc;
 use std::time::Instant;
 
 use glam::{DAffine3, DVec2, DVec3};
-use poinav_ifc::Entity;
+use poinav_ifc::{Entity, EntityId};
 
 use crate::advanced_brep::advanced_brep;
 use crate::axis2_placement::{axis2placement, axis2placement_3d};
@@ -24,12 +27,14 @@ use crate::csg_primitive::csg_primitive;
 use crate::error::{degenerate, missing, required_ref, unsupported, GeomError};
 use crate::extrusion::{extrude, extruded_area_solid};
 use crate::face_set::face_set_mesh;
+use crate::gradient_curve::BasisCurve;
 use crate::half_space::half_space;
 use crate::mesh::Mesh;
 use crate::open_profile::{extruded_open_profile, is_open_profile_extrusion};
 use crate::parameterized_profile::ellipse;
 use crate::profile::ProfileArea;
 use crate::revolve::revolved_area_solid;
+use crate::sectioned_solid::sectioned_solid_horizontal;
 use crate::surface_style::item_colour;
 use crate::swept_area::{directrix_swept_area_solid, is_directrix_swept_area_solid};
 use crate::swept_disk::swept_disk_solid;
@@ -76,6 +81,19 @@ pub struct ItemMesher {
     /// The colour of the first styled item met outside boolean second operands.
     pub colour: Option<[f32; 4]>,
     look_for_colour: bool,
+    maps: MappedMeshes,
+}
+
+/// One mapped representation meshed: its parts, the colour its items give, its item count.
+type MappedMesh = (Vec<Part>, Option<[f32; 4]>, usize);
+
+/// What meshing one product leaves for the next ones of the same model: mapped
+/// representations already meshed (by `#id`: their parts in the map's coordinates, the
+/// colour their items give and how many items they hold) and directrices read.
+#[derive(Debug, Default)]
+pub struct MappedMeshes {
+    maps: HashMap<EntityId, MappedMesh>,
+    curves: HashMap<EntityId, Arc<BasisCurve>>,
 }
 
 impl ItemMesher {
@@ -94,6 +112,7 @@ impl ItemMesher {
             triangles: 0,
             colour: None,
             look_for_colour: true,
+            maps: MappedMeshes::default(),
         }
     }
 
@@ -152,15 +171,8 @@ impl ItemMesher {
                 required_ref(&item, "MappingTarget", "IfcCartesianTransformationOperator")?;
             let t = transformation(target, s)? * origin;
             let rep = required_ref(&source, "MappedRepresentation", "IfcRepresentation")?;
-            let mut out = Vec::new();
-            for sub in rep.get_refs("Items") {
-                out.extend(
-                    self.item(sub, depth + 1)?
-                        .into_iter()
-                        .map(|p| p.transformed(&t)),
-                );
-            }
-            Ok(out)
+            let parts = self.mapped(rep, depth)?;
+            Ok(parts.into_iter().map(|p| p.transformed(&t)).collect())
         } else if item.is_a("IfcBooleanResult") {
             self.boolean(item, depth)
         } else if item.is_a("IfcCsgSolid") {
@@ -193,6 +205,15 @@ impl ItemMesher {
             self.leaf(&item, mesh, true)
         } else if item.is_a("IfcAdvancedBrep") {
             let mesh = advanced_brep(item, &self.units)?;
+            self.leaf(&item, mesh, true)
+        } else if item.is_a("IfcSectionedSolidHorizontal") {
+            let directrix = required_ref(&item, "Directrix", "IfcCurve")?;
+            let curve = match self.maps.curves.get(&directrix.id()) {
+                Some(c) => c.clone(),
+                None => Arc::new(BasisCurve::read(directrix, &self.units)?),
+            };
+            self.maps.curves.insert(directrix.id(), curve.clone());
+            let mesh = sectioned_solid_horizontal(item, &self.units, &curve)?;
             self.leaf(&item, mesh, true)
         } else if item.is_a("IfcManifoldSolidBrep")
             || item.is_a("IfcFaceBasedSurfaceModel")
@@ -244,6 +265,63 @@ impl ItemMesher {
         } else {
             Err(unsupported(&item, "representation item"))
         }
+    }
+
+    /// The parts of a mapped representation in its own coordinates, meshed once per
+    /// [`MappedMeshes`] (a model's thousand sleepers share one map); the colour its items give
+    /// is remembered with them.
+    fn mapped(&mut self, rep: Entity<'_>, depth: usize) -> Result<Vec<Part>, GeomError> {
+        if let Some((parts, colour, items)) = self.maps.maps.get(&rep.id()) {
+            let (parts, colour) = (parts.clone(), *colour);
+            // The items count as if evaluated again, so the bounds hold as without the cache.
+            self.items += items;
+            if self.items > MAX_ITEMS {
+                return Err(degenerate(&rep, "more items than one product may have"));
+            }
+            self.count(&rep, parts.iter().map(|p| p.mesh.triangles.len()).sum())?;
+            if self.look_for_colour && self.colour.is_none() {
+                self.colour = colour;
+            }
+            return Ok(parts);
+        }
+        let saved = (
+            self.colour.take(),
+            std::mem::replace(&mut self.look_for_colour, true),
+        );
+        let items_before = self.items;
+        let mut result = Ok(Vec::new());
+        for sub in rep.get_refs("Items") {
+            match (self.item(sub, depth + 1), &mut result) {
+                (Ok(p), Ok(out)) => out.extend(p),
+                (Err(e), _) => {
+                    result = Err(e);
+                    break;
+                }
+                _ => {}
+            }
+        }
+        let found = std::mem::replace(&mut self.colour, saved.0);
+        self.look_for_colour = saved.1;
+        let parts = result?;
+        if self.look_for_colour && self.colour.is_none() {
+            self.colour = found;
+        }
+        let items = self.items - items_before;
+        self.maps
+            .maps
+            .insert(rep.id(), (parts.clone(), found, items));
+        Ok(parts)
+    }
+
+    /// Takes over `maps` (mapped representations meshed for earlier products of the model).
+    pub fn with_maps(mut self, maps: MappedMeshes) -> ItemMesher {
+        self.maps = maps;
+        self
+    }
+
+    /// The mapped representations meshed so far, for the next product's mesher.
+    pub fn into_maps(self) -> MappedMeshes {
+        self.maps
     }
 
     fn lengths<const N: usize>(

