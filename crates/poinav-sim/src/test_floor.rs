@@ -210,3 +210,24 @@ impl View<'_> {
         algorithm1::apply_clearance(me, pending, &env, &mut self.db, &mut sink)
     }
 }
+
+/// The paper robot as a run starts it (default forces: 50 N drive, 100 N brake), brush off.
+pub(crate) fn setup(
+    name: &str,
+    start: DVec2,
+    heading_deg: f64,
+    controller: crate::controller::ControllerSpec,
+) -> crate::step::RobotSetup {
+    crate::step::RobotSetup {
+        name: name.into(),
+        global_id: None,
+        profile: RobotProfile::paper(),
+        start,
+        heading_deg,
+        controller,
+        priority: 0,
+        brush_on: false,
+        drive_force_n: 50.0,
+        brake_force_n: 100.0,
+    }
+}
