@@ -88,7 +88,7 @@ fn a3_references_are_the_side_rays_on_path_guidance_walls_only() {
 /// Drives robot "R" head-on from (0, -3.5) towards the door of [`door_floor`] at the top
 /// speed's step (5 m/s at 60 Hz), perceiving each step and applying each measurement (R5);
 /// returns (y, estimate, status after it) per reported estimate and the door's status before.
-fn approach(w: f64) -> (Vec<(f64, f64, AccessibilityStatus)>, AccessibilityStatus) {
+fn approach(w: f64, step: f64) -> (Vec<(f64, f64, AccessibilityStatus)>, AccessibilityStatus) {
     let floor = door_floor(w, 0.2);
     let mut v = View::new(
         &floor,
@@ -109,7 +109,7 @@ fn approach(w: f64) -> (Vec<(f64, f64, AccessibilityStatus)>, AccessibilityStatu
             v.apply(0, &pc);
             out.push((y, pc.estimate_m, status(&v)));
         }
-        y += 5.0 / 60.0;
+        y += step;
     }
     (out, before)
 }
@@ -120,7 +120,7 @@ fn a2_reports_only_measured_jambs_and_r5_decides_the_status() {
         (0.8, AccessibilityStatus::Restricted),
         (1.0, AccessibilityStatus::FullAccess),
     ] {
-        let (reports, before) = approach(w);
+        let (reports, before) = approach(w, 5.0 / 60.0);
         assert_eq!(before, AccessibilityStatus::PendingValidation);
         assert!(!reports.is_empty(), "{w} m: no estimate");
         // Far from the door the angled rays bound the jambs loosely: no guess is reported.
@@ -131,6 +131,21 @@ fn a2_reports_only_measured_jambs_and_r5_decides_the_status() {
             assert_eq!(status, want, "{w} m door, estimate {est}");
         }
     }
+}
+
+#[test]
+fn a2_a_loose_bracket_is_no_estimate() {
+    // Readings 0.3 m apart: the angled rays' face points jump 17 cm, so a jamb is bracketed
+    // only loosely (the 0.80 m door would read 0.689 m): nothing is reported, the door stays
+    // PENDING. The 1.00 m door's reveal is hit 0.8 m before it: the jamb itself, exact.
+    let (reports, before) = approach(0.8, 0.3);
+    assert_eq!(reports, []);
+    assert_eq!(before, AccessibilityStatus::PendingValidation);
+    let (reports, _) = approach(1.0, 0.3);
+    assert_eq!(reports.len(), 1, "{reports:?}");
+    let (y, est, status) = reports[0];
+    assert!(close(y, -0.8) && close(est, 1.0), "{reports:?}");
+    assert_eq!(status, AccessibilityStatus::FullAccess);
 }
 
 #[test]
