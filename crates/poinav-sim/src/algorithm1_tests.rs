@@ -29,8 +29,8 @@ fn a1_caps_the_speed_to_stop_a_margin_before_a_wall_ahead() {
     let floor = open_with("ahead", rect(3.0, -2.0, 3.2, 2.0));
     let mut v = View::new(&floor, vec![robot("R", DVec2::ZERO, 0.0, 0)]);
     for (x, cap) in [
-        (-3.0, 5.0),                       // 6 m away: the top speed
-        (2.0, (2.0 * BRAKE * 0.5).sqrt()), // 1 m: 0.5 m to stop in, 4 m/s
+        (-3.0, 5.0), // 6 m away: the top speed
+        (2.0, 4.0),  // 1 m: 0.5 m to stop in at 16 m/s²
         (2.45, (2.0 * BRAKE * 0.05f64).sqrt()),
         (2.55, 0.0), // inside the margin: stop
     ] {
@@ -44,7 +44,6 @@ fn a1_caps_the_speed_to_stop_a_margin_before_a_wall_ahead() {
         assert_eq!(p.turn_bias, 0.0);
         assert_eq!(p.roles.has(Role::Avoidance), x > -1.0);
     }
-    assert!(close((2.0 * BRAKE * 0.5f64).sqrt(), 4.0));
 }
 
 #[test]
@@ -178,6 +177,100 @@ fn a2_a_door_narrower_than_the_robot_is_never_driven_into() {
             assert!(p.roles.has(Role::Transition));
         }
     }
+}
+
+#[test]
+fn b1_hazard_zone_and_b2_narrow_door_cap_the_speed() {
+    // A B-1 zone: half the top speed.
+    let mut floor = open_floor(None);
+    floor.zones[0].roles.push(Role::Hazard);
+    let mut v = View::new(&floor, vec![robot("R", DVec2::ZERO, 0.0, 0)]);
+    let (p, _) = v.perceive(0, &mut Mind::new());
+    assert!(close(p.speed_cap, 2.5), "{}", p.speed_cap);
+    assert!(p.roles.has(Role::Hazard));
+    // A door 0.7 m ahead: 0.6 x 5 m/s at the door (plus braking room), 0.3 x 5 m/s with B-2.
+    for (roles, at_door) in [
+        (vec![Role::Transition], 3.0),
+        (vec![Role::Transition, Role::Narrow], 1.5),
+    ] {
+        let mut floor = door_floor(1.0, 0.2);
+        floor.doors[0].roles = roles;
+        let mut v = View::new(
+            &floor,
+            vec![robot("R", DVec2::new(0.0, -0.6), FRAC_PI_2, 0)],
+        );
+        let (p, _) = v.perceive(0, &mut Mind::new());
+        // Centre 0.7 m ahead, less the half length: 0.3 m to brake in (4.31 and 3.44 m/s).
+        let cap = (at_door * at_door + 2.0 * BRAKE * 0.3f64).sqrt();
+        assert!(close(p.speed_cap, cap), "{} != {cap}", p.speed_cap);
+    }
+}
+
+#[test]
+fn c1_a_zone_carries_c2_while_a_robot_in_it_has_it() {
+    let floor = open_floor(Some((2.0, CoordinationProtocol::Yield)));
+    let mut v = View::new(
+        &floor,
+        vec![
+            robot("A", DVec2::ZERO, 0.0, 1),
+            robot("B", DVec2::new(0.0, 1.0), 0.0, 0),
+        ],
+    );
+    let rec = v.db.index(Element::Zone(0));
+    assert!(!v.db.roles(rec).has(Role::RobotInteraction));
+    let mut minds = vec![Mind::new(), Mind::new()];
+    for m in &mut minds {
+        m.zone = Some(0);
+        m.c2 = true;
+    }
+    let nearest = [Some((1, 1.0)), Some((0, 1.0))];
+    let coordinate = |v: &mut View<'_>, minds: &[Mind]| {
+        let env = Env {
+            floor: v.floor,
+            nav: &v.nav,
+            robots: &v.robots,
+            world: &v.world,
+            behaviour: &v.behaviour,
+            step: 0,
+            t: 0.0,
+        };
+        let mut observations = Vec::new();
+        let mut sink = Sink {
+            events: &mut v.events,
+            observations: &mut observations,
+        };
+        zone_coordination(&env, minds, &nearest, &mut v.db, &mut sink);
+        observations
+    };
+    let obs = coordinate(&mut v, &minds);
+    assert!(v.db.roles(rec).has(Role::RobotInteraction));
+    assert_eq!(obs.len(), 1);
+    assert_eq!(obs[0].1, Observation::RobotDistance { distance_m: 1.0 });
+    assert!(matches!(
+        &v.events[..],
+        [Event {
+            kind: EventKind::RoleAdded {
+                role: Role::RobotInteraction,
+                ..
+            },
+            ..
+        }]
+    ));
+    // Again: nothing changes, nothing is reported.
+    assert!(coordinate(&mut v, &minds).is_empty());
+    // Neither has C-2 any more: the zone loses it.
+    for m in &mut minds {
+        m.c2 = false;
+    }
+    coordinate(&mut v, &minds);
+    assert!(!v.db.roles(rec).has(Role::RobotInteraction));
+    assert!(matches!(
+        v.events.last().unwrap().kind,
+        EventKind::RoleRemoved {
+            role: Role::RobotInteraction,
+            ..
+        }
+    ));
 }
 
 /// Robots "A" (priority 1) at the origin and "B" (priority 0) 1 m to its left, both heading +x,
