@@ -230,33 +230,46 @@ fn corridor() -> Floor {
 
 #[test]
 fn wall_following_settles_at_its_distance() {
+    // Starting 7 cm too far from the wall on the right and 10 cm too near, at rest: 0.6 m after
+    // 6 s (to 1 mm), heading along the wall, 5.95 m driven (6 s at 1 m/s less the 0.1 s to
+    // get there at 10 m/s²), never touching it. (Not from 10 cm too far: at rest the gains are
+    // those of 0.5 m/s, the turn saturates, the side ray's distance grows as the robot turns
+    // towards the wall, and it ends facing the wall, stopped by A-1.)
     let floor = corridor();
-    let s = setup(
-        "R",
-        DVec2::new(-8.0, -0.37),
-        0.0,
-        ControllerSpec::WallFollow {
-            side: Side::Right,
-            distance_m: 0.6,
-            to: None,
-            speed_m_s: Some(1.0),
-        },
-    );
-    let mut sim = Sim::new(&floor, &[s], SimOptions::default()).unwrap();
-    for _ in 0..360 {
-        sim.tick(true);
+    for y in [-0.33, -0.5] {
+        let s = setup(
+            "R",
+            DVec2::new(-8.0, y),
+            0.0,
+            ControllerSpec::WallFollow {
+                side: Side::Right,
+                distance_m: 0.6,
+                to: None,
+                speed_m_s: Some(1.0),
+            },
+        );
+        let mut sim = Sim::new(&floor, &[s], SimOptions::default()).unwrap();
+        for _ in 0..360 {
+            sim.tick(true);
+        }
+        assert_eq!(sim.mode(0), Some(Mode::WallFollow));
+        let st = sim.robots()[0].state;
+        assert!((st.pos.y - (-0.4)).abs() < 0.001, "from {y}: {}", st.pos);
+        assert!(
+            st.heading.abs() < 0.1f64.to_radians(),
+            "from {y}: {}",
+            st.heading
+        );
+        assert!(
+            (st.pos.x - (-8.0 + 5.95)).abs() < 0.02,
+            "from {y}: {}",
+            st.pos
+        );
+        let right = sim.readings()[0].rays[crate::sensor::RIGHT].dist;
+        assert!((right - 0.6).abs() < 0.001, "from {y}: {right}");
+        assert!(!sim
+            .events()
+            .iter()
+            .any(|e| matches!(e.kind, EventKind::Contact { .. })));
     }
-    assert_eq!(sim.mode(0), Some(Mode::WallFollow));
-    // 0.63 m away at the start, 0.6 m after 6 s (to 1 mm), heading along the wall, 5.95 m
-    // driven (6 s at 1 m/s less the 0.1 s to get there at 10 m/s²).
-    let st = sim.robots()[0].state;
-    assert!((st.pos.y - (-0.4)).abs() < 0.001, "{}", st.pos);
-    assert!(st.heading.abs() < 0.1f64.to_radians(), "{}", st.heading);
-    assert!((st.pos.x - (-8.0 + 5.95)).abs() < 0.02, "{}", st.pos);
-    let right = sim.readings()[0].rays[crate::sensor::RIGHT].dist;
-    assert!((right - 0.6).abs() < 0.001, "{right}");
-    assert!(!sim
-        .events()
-        .iter()
-        .any(|e| matches!(e.kind, EventKind::Contact { .. })));
 }
