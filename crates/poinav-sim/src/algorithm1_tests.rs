@@ -418,6 +418,35 @@ fn c2_one_robot_at_a_time_through_a_single_lane_door() {
     assert_eq!((a.0, b.0), (None, None));
 }
 
+#[test]
+fn c2_a_robot_that_waited_waits_until_the_other_has_cleared_the_door() {
+    // A waited at the 0.90 m door; B came through and leaves on A's side, heading away.
+    let floor = door_floor(0.9, 0.2);
+    for (b, waits) in [
+        (DVec2::new(0.8, -0.5), true),
+        (DVec2::new(0.9, -1.1), false),
+    ] {
+        let mut v = View::new(
+            &floor,
+            vec![
+                robot("A", DVec2::new(0.0, -2.5), FRAC_PI_2, 0),
+                robot("B", b, -FRAC_PI_2, 0),
+            ],
+        );
+        let centre = floor.doors[0].center;
+        // 1.0 m and 1.5 m from the centre: within and beyond DOOR_CLEAR_M (1.3 m).
+        assert!(close(b.distance(centre), if waits { 1.0 } else { 1.5 }));
+        let mut held = Mind::new();
+        held.door_wait = Some(0);
+        v.perceive(0, &mut held);
+        assert_eq!(held.door_wait, waits.then_some(0), "B at {b}");
+        // A robot that had not waited does not start to.
+        let mut fresh = Mind::new();
+        v.perceive(0, &mut fresh);
+        assert_eq!(fresh.door_wait, None);
+    }
+}
+
 fn perception(cap: f64) -> Perception {
     Perception {
         roles: RoleSet::default(),
