@@ -627,3 +627,7 @@ impl Controller {
         }
     }
 }
+
+#[cfg(test)]
+#[path = "controller_tests.rs"]
+mod tests;

@@ -14,7 +14,8 @@ use poinav_poi::{AccessibilityStatus, Classification, Classified, Role};
 
 use crate::error::SimError;
 
-fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Vec<DVec2> {
+/// The axis-aligned rectangle `[x0, x1] x [y0, y1]` as a counter-clockwise ring.
+pub(crate) fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Vec<DVec2> {
     vec![
         DVec2::new(x0, y0),
         DVec2::new(x1, y0),

@@ -763,3 +763,7 @@ pub fn judge(e: &Expect, line: usize, data: &RunData, floor: &Floor) -> Judged {
     }
     j.finish(&data.events, floor)
 }
+
+#[cfg(test)]
+#[path = "expect_tests.rs"]
+mod tests;

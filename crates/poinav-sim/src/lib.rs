@@ -36,6 +36,8 @@ pub mod scenario;
 pub mod sensor;
 pub mod step;
 pub mod terrain;
+#[cfg(test)]
+mod test_floor;
 pub mod trace;
 pub mod vertical;
 pub mod world;

@@ -854,3 +854,7 @@ impl<'f> Sim<'f> {
         }
     }
 }
+
+#[cfg(test)]
+#[path = "step_tests.rs"]
+mod tests;
