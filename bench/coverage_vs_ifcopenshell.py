@@ -17,7 +17,8 @@ file, in this one run:
 Prints one row per file: IfcOpenShell meshed (elements and spaces; other products such as
 sites or annotations in brackets, which poinav does not mesh), poinav meshed, meshed by
 IfcOpenShell and not by poinav, and the reverse; then every element of the "not by poinav"
-column with its class and poinav's reason, and the reverse ones. `--markdown` prints the
+column with its class and poinav's reason, and the reverse ones; the last column counts
+poinav's failures (products with a representation but no mesh, each with its reason). `--markdown` prints the
 table as the README's.
 Exit 0; 1 if the example fails.
 """
@@ -76,13 +77,14 @@ def main():
         without = listing["without_representation"]  # guid -> class
         candidates = set(listing["candidates"])  # elements but openings, and spaces
         if ios is None:
-            rows.append((name, None, 0, len(meshed), None, None, problem))
+            rows.append((name, None, 0, len(meshed), None, None, problem, len(failed)))
             continue
         elements = {g: c for g, c in ios.items() if g in candidates}
         other = len(ios) - len(elements)
         missing = sorted(g for g in elements if g not in meshed)
         extra = sorted(g for g in meshed if g not in ios)
-        rows.append((name, len(elements), other, len(meshed), len(missing), len(extra), None))
+        rows.append((name, len(elements), other, len(meshed), len(missing), len(extra), None,
+                     len(failed)))
         for g in missing:
             reason = failed.get(g, [elements[g], "not meshed"])[1] if g in failed else (
                 "no Representation" if g in without else "not a meshed product")
@@ -90,22 +92,24 @@ def main():
         for g in extra:
             details.append(f"{name}: poinav only: {meshed[g]} {g}")
     if args.markdown:
-        print("| file | IfcOpenShell meshes | poinav meshes | IfcOpenShell only | poinav only |")
-        print("| --- | ---: | ---: | ---: | ---: |")
-        for name, ios, other, ours_n, missing, extra, problem in rows:
+        print("| file | IfcOpenShell meshes | poinav meshes | IfcOpenShell only | poinav only "
+              "| poinav failures |")
+        print("| --- | ---: | ---: | ---: | ---: | ---: |")
+        for name, ios, other, ours_n, missing, extra, problem, fails in rows:
             if problem:
-                print(f"| {name} | ({problem}) | {ours_n} | | |")
+                print(f"| {name} | ({problem}) | {ours_n} | | | {fails} |")
             else:
                 o = f" (+{other} other)" if other else ""
-                print(f"| {name} | {ios}{o} | {ours_n} | {missing} | {extra} |")
+                print(f"| {name} | {ios}{o} | {ours_n} | {missing} | {extra} | {fails} |")
     else:
-        print(f"{'file':45} {'IfcOpenShell':>18} {'poinav':>7} {'IOS only':>9} {'poinav only':>12}")
-        for name, ios, other, ours_n, missing, extra, problem in rows:
+        print(f"{'file':45} {'IfcOpenShell':>18} {'poinav':>7} {'IOS only':>9} {'poinav only':>12}"
+              f" {'failures':>9}")
+        for name, ios, other, ours_n, missing, extra, problem, fails in rows:
             if problem:
-                print(f"{name:45} {problem}; poinav meshes {ours_n}")
+                print(f"{name:45} {problem}; poinav meshes {ours_n}, {fails} failures")
             else:
                 o = f"{ios} (+{other})" if other else str(ios)
-                print(f"{name:45} {o:>18} {ours_n:>7} {missing:>9} {extra:>12}")
+                print(f"{name:45} {o:>18} {ours_n:>7} {missing:>9} {extra:>12} {fails:>9}")
     for d in details:
         print(d)
 
