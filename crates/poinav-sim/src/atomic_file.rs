@@ -1,5 +1,5 @@
 //! A file written as it is produced and published atomically: the bytes go to a temporary file
-//! beside the target (named like `poinav_ifc::output`'s, `.poinav-<pid>-<random>.tmp`, so a
+//! beside the target (named like `poinav_io::atomic`'s, `.poinav-<pid>-<random>.tmp`, so a
 //! later write sweeps one left by a killed process), which is synced and renamed over the
 //! target by [`AtomicFile::commit`]; dropped without a commit, it is removed. A long trace is
 //! streamed to disk this way without ever being held in memory, and a reader never sees half.

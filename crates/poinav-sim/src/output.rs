@@ -35,7 +35,7 @@ pub fn write_outputs(
     let mut written = Vec::new();
     if let Some(trace) = &outcome.trace {
         let path = dir.join(TRACE);
-        poinav_ifc::output::write_atomic(&path, trace).map_err(|e| io(&path, e))?;
+        poinav_io::write_atomic(&path, trace).map_err(|e| io(&path, e))?;
         written.push(path);
     }
     written.extend(write_summary_and_plots(dir, outcome, floor)?);
@@ -61,7 +61,7 @@ fn write_summary_and_plots(
     let mut written = Vec::new();
     for (name, text) in files {
         let path = dir.join(name);
-        poinav_ifc::output::write_atomic(&path, text.as_bytes()).map_err(|e| io(&path, e))?;
+        poinav_io::write_atomic(&path, text.as_bytes()).map_err(|e| io(&path, e))?;
         written.push(path);
     }
     Ok(written)
