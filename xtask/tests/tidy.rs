@@ -16,7 +16,7 @@ const ALLOWED: &[(&str, &[&str])] = &[
     ("poinav-geom", &["poinav-ifc"]),
     ("poinav-poi", &["poinav-ifc", "poinav-geom"]),
     ("poinav-author", &["poinav-ifc"]),
-    ("poinav-nav", &["poinav-io", "poinav-ifc", "poinav-poi"]),
+    ("poinav-nav", &["poinav-io", "poinav-poi"]),
     (
         "poinav-sim",
         &[
