@@ -9,12 +9,12 @@ use poinav_nav::Floor;
 use poinav_poi::runtime::{self, Observation};
 use poinav_poi::{Classification, WriteOptions};
 
-use crate::atomic_file::AtomicFile;
 use crate::error::SimError;
 use crate::plot;
 use crate::recorder::TraceOut;
 use crate::run::{run_with, Outcome};
 use crate::scenario::Scenario;
+use poinav_io::AtomicFile;
 
 fn io(path: &Path, e: std::io::Error) -> SimError {
     SimError::Io {
