@@ -11,14 +11,16 @@ use std::path::{Path, PathBuf};
 /// `poinav-nav` and `poinav-sim` to the IFC side are the ones the one-bridge refactor (issue
 /// "One building model for every consumer") is to remove.
 const ALLOWED: &[(&str, &[&str])] = &[
-    ("poinav-ifc", &[]),
+    ("poinav-io", &[]),
+    ("poinav-ifc", &["poinav-io"]),
     ("poinav-geom", &["poinav-ifc"]),
     ("poinav-poi", &["poinav-ifc", "poinav-geom"]),
     ("poinav-author", &["poinav-ifc"]),
-    ("poinav-nav", &["poinav-ifc", "poinav-poi"]),
+    ("poinav-nav", &["poinav-io", "poinav-poi"]),
     (
         "poinav-sim",
         &[
+            "poinav-io",
             "poinav-ifc",
             "poinav-geom",
             "poinav-poi",
@@ -28,14 +30,18 @@ const ALLOWED: &[(&str, &[&str])] = &[
     ),
     (
         "poinav-export",
-        &["poinav-ifc", "poinav-geom", "poinav-poi"],
+        &["poinav-io", "poinav-ifc", "poinav-geom", "poinav-poi"],
     ),
-    ("poinav-bcf", &["poinav-ifc", "poinav-poi", "poinav-nav"]),
+    (
+        "poinav-bcf",
+        &["poinav-io", "poinav-ifc", "poinav-poi", "poinav-nav"],
+    ),
     ("poinav-mcap", &["poinav-poi", "poinav-nav"]),
     ("poinav-viewer", &["poinav-poi", "poinav-nav", "poinav-sim"]),
     (
         "poinav",
         &[
+            "poinav-io",
             "poinav-ifc",
             "poinav-geom",
             "poinav-poi",

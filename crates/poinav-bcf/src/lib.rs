@@ -170,7 +170,7 @@ pub fn write_bcf(
     options: &BcfOptions,
 ) -> Result<Vec<Issue>, BcfError> {
     let (bytes, issues) = bcf_bytes(report, building, profiles, options)?;
-    poinav_ifc::output::write_atomic(path, &bytes).map_err(|source| BcfError::Write {
+    poinav_io::write_atomic(path, &bytes).map_err(|source| BcfError::Write {
         path: path.to_path_buf(),
         source,
     })?;

@@ -23,18 +23,9 @@ pub const SNAPSHOT_FILE: &str = "snapshot.png";
 
 const HEAD: &str = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
 
-/// Text for XML content or a double-quoted attribute: poinav-nav's escaping after characters
-/// XML 1.0 cannot hold (C0 controls but tab and line breaks, U+FFFE, U+FFFF) become U+FFFD.
+/// Text for XML content or a double-quoted attribute ([`poinav_io::xml::attr`]).
 pub fn text(s: &str) -> String {
-    let legal: String = s
-        .chars()
-        .map(|c| match c {
-            '\t' | '\n' | '\r' => c,
-            c if (c as u32) < 0x20 || c == '\u{FFFE}' || c == '\u{FFFF}' => '\u{FFFD}',
-            c => c,
-        })
-        .collect();
-    poinav_nav::audit::esc(&legal)
+    poinav_io::xml::attr(s)
 }
 
 /// `bcf.version`.

@@ -687,7 +687,7 @@ pub fn to_fbx(scene: &SceneInput<'_>) -> Vec<u8> {
 
 /// Writes the FBX of `scene` to `path` atomically.
 pub fn write_fbx(path: &Path, scene: &SceneInput<'_>) -> Result<(), ExportError> {
-    poinav_ifc::output::write_atomic(path, &to_fbx(scene)).map_err(|e| ExportError::Write {
+    poinav_io::write_atomic(path, &to_fbx(scene)).map_err(|e| ExportError::Write {
         path: path.display().to_string(),
         message: e.to_string(),
     })

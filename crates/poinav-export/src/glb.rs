@@ -671,7 +671,7 @@ pub fn write_glb_with(
     options: GlbOptions,
 ) -> Result<(), ExportError> {
     let doc = Document::new(scene, options);
-    poinav_ifc::output::write_atomic_with(path, |w| doc.write(w)).map_err(|e| ExportError::Write {
+    poinav_io::write_atomic_with(path, |w| doc.write(w)).map_err(|e| ExportError::Write {
         path: path.display().to_string(),
         message: e.to_string(),
     })

@@ -25,6 +25,7 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 use poinav_ifc::{EntityId, Model, Schema};
+use poinav_io::xml;
 use poinav_poi::{pset_names, Classification, Classified, Role, WriteOptions};
 
 use crate::ExportError;
@@ -250,35 +251,12 @@ fn entity_facet_matches(model: &Model, class: &str) -> BTreeSet<EntityId> {
     out
 }
 
-/// Escapes text for XML content (`attr == false`) or a double-quoted attribute (`attr == true`).
-/// Characters XML 1.0 cannot carry at all (most C0 controls, U+FFFE/U+FFFF) become U+FFFD.
-fn escape(s: &str, attr: bool) -> String {
-    let mut out = String::with_capacity(s.len());
-    for ch in s.chars() {
-        match ch {
-            '&' => out.push_str("&amp;"),
-            '<' => out.push_str("&lt;"),
-            '>' => out.push_str("&gt;"),
-            '"' if attr => out.push_str("&quot;"),
-            '\'' if attr => out.push_str("&apos;"),
-            '\t' | '\n' | '\r' if attr => {
-                let _ = write!(out, "&#{};", ch as u32);
-            }
-            '\r' => out.push_str("&#13;"),
-            '\t' | '\n' => out.push(ch),
-            c if (c as u32) < 0x20 || c == '\u{FFFE}' || c == '\u{FFFF}' => out.push('\u{FFFD}'),
-            c => out.push(c),
-        }
-    }
-    out
-}
-
 /// Appends `<ids:{tag}>` holding `value` (nothing for [`Value::Any`]).
 fn write_value(out: &mut String, indent: &str, tag: &str, value: &Value) {
     match value {
         Value::Any => {}
         Value::Simple(v) => {
-            let v = escape(v, false);
+            let v = xml::text(v);
             let _ = writeln!(
                 out,
                 "{indent}<ids:{tag}><ids:simpleValue>{v}</ids:simpleValue></ids:{tag}>"
@@ -288,7 +266,7 @@ fn write_value(out: &mut String, indent: &str, tag: &str, value: &Value) {
             let _ = writeln!(out, "{indent}<ids:{tag}>");
             let _ = writeln!(out, "{indent}  <xs:restriction base=\"xs:string\">");
             for v in values {
-                let v = escape(v, true);
+                let v = xml::attr(v);
                 let _ = writeln!(out, "{indent}    <xs:enumeration value=\"{v}\"/>");
             }
             let _ = writeln!(out, "{indent}  </xs:restriction>");
@@ -320,12 +298,12 @@ fn write_info(out: &mut String, file: &str, description: &str, timestamp: &str) 
     let version = env!("CARGO_PKG_VERSION");
     let title = format!("Robot POI enrichment of {file} (poinav {version})");
     out.push_str("  <ids:info>\n");
-    let _ = writeln!(out, "    <ids:title>{}</ids:title>", escape(&title, false));
+    let _ = writeln!(out, "    <ids:title>{}</ids:title>", xml::text(&title));
     let _ = writeln!(out, "    <ids:version>poinav {version}</ids:version>");
     let _ = writeln!(
         out,
         "    <ids:description>{}</ids:description>",
-        escape(description, false)
+        xml::text(description)
     );
     if let Some(date) = date_of(timestamp) {
         let _ = writeln!(out, "    <ids:date>{date}</ids:date>");
@@ -340,10 +318,10 @@ fn open_spec(out: &mut String, name: &str, schema: Schema, identifier: &str, des
     let _ = writeln!(
         out,
         "    <ids:specification name=\"{}\" ifcVersion=\"{}\" identifier=\"{}\" description=\"{}\">",
-        escape(name, true),
+        xml::attr(name),
         schema.name(),
-        escape(identifier, true),
-        escape(description, true)
+        xml::attr(identifier),
+        xml::attr(description)
     );
 }
 
@@ -359,11 +337,11 @@ fn write_property(out: &mut String, pset: &str, p: &PropertyReq) {
         p.data_type
     );
     if let Some(i) = p.instructions {
-        let _ = write!(out, " instructions=\"{}\"", escape(i, true));
+        let _ = write!(out, " instructions=\"{}\"", xml::attr(i));
     }
     out.push_str(">\n");
-    let pset = escape(pset, false);
-    let base = escape(p.base_name, false);
+    let pset = xml::text(pset);
+    let base = xml::text(p.base_name);
     let _ = writeln!(
         out,
         "          <ids:propertySet><ids:simpleValue>{pset}</ids:simpleValue></ids:propertySet>"
@@ -403,7 +381,7 @@ fn write_group(
         &description,
     );
     out.push_str("      <ids:applicability minOccurs=\"1\" maxOccurs=\"unbounded\">\n");
-    let class = escape(&key.class.to_ascii_uppercase(), false);
+    let class = xml::text(&key.class.to_ascii_uppercase());
     let _ = writeln!(out, "        <ids:entity><ids:name><ids:simpleValue>{class}</ids:simpleValue></ids:name></ids:entity>");
     let ids: BTreeSet<EntityId> = elements.iter().map(|e| e.id).collect();
     if entity_facet_matches(ctx.model, &key.class) != ids {
@@ -443,7 +421,7 @@ fn write_nothing_enriched(out: &mut String, ctx: &Context<'_>) {
     );
     out.push_str("      <ids:applicability minOccurs=\"0\" maxOccurs=\"0\">\n");
     out.push_str("        <ids:property>\n");
-    let pset = escape(&pset, false);
+    let pset = xml::text(&pset);
     let _ = writeln!(
         out,
         "          <ids:propertySet><ids:simpleValue>{pset}</ids:simpleValue></ids:propertySet>"
@@ -523,7 +501,7 @@ pub fn write_ids(
     c: &Classification,
     opts: &WriteOptions,
 ) -> Result<(), ExportError> {
-    poinav_ifc::output::write_atomic(path, to_ids(model, c, opts).as_bytes()).map_err(|e| {
+    poinav_io::write_atomic(path, to_ids(model, c, opts).as_bytes()).map_err(|e| {
         ExportError::Write {
             path: path.display().to_string(),
             message: e.to_string(),
@@ -554,15 +532,6 @@ mod tests {
 
     fn specs(ids: &str) -> Vec<&str> {
         ids.split("<ids:specification ").skip(1).collect()
-    }
-
-    #[test]
-    fn escapes_text_and_attributes() {
-        assert_eq!(escape("a&b<c>\"d'", false), "a&amp;b&lt;c&gt;\"d'");
-        assert_eq!(escape("a&b<c>\"d'", true), "a&amp;b&lt;c&gt;&quot;d&apos;");
-        assert_eq!(escape("x\ny\tz\r", true), "x&#10;y&#9;z&#13;");
-        assert_eq!(escape("x\ny\r", false), "x\ny&#13;");
-        assert_eq!(escape("é\u{1}\u{FFFF}😀", false), "é\u{FFFD}\u{FFFD}😀");
     }
 
     #[test]

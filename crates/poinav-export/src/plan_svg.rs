@@ -15,6 +15,7 @@ use glam::DVec2;
 use poinav_geom::floor_plan::{FloorPlan, PlanItem};
 use poinav_geom::region::Region;
 use poinav_geom::PlanItemKind;
+use poinav_io::xml;
 
 /// How to draw a plan.
 #[derive(Debug, Clone, PartialEq)]
@@ -105,7 +106,7 @@ pub fn to_svg(plan: &FloorPlan, options: &SvgOptions) -> String {
     let _ = writeln!(
         s,
         "<title>{} (elevation {:.2} m, plan band {:.2}-{:.2} m)</title>",
-        esc(storey),
+        xml::attr(storey),
         plan.elevation_m,
         plan.band.0 - plan.elevation_m,
         plan.band.1 - plan.elevation_m
@@ -139,8 +140,8 @@ pub fn to_svg(plan: &FloorPlan, options: &SvgOptions) -> String {
             let _ = write!(
                 s,
                 r#"<path data-global-id="{}" data-class="{}""#,
-                esc(&item.global_id),
-                esc(&item.class)
+                xml::attr(&item.global_id),
+                xml::attr(&item.class)
             );
             if let Some(f) = own_fill {
                 let _ = write!(s, r#" fill="{f}""#);
@@ -149,13 +150,13 @@ pub fn to_svg(plan: &FloorPlan, options: &SvgOptions) -> String {
                 s,
                 r#" d="{}"><title>{}"#,
                 path(&item.regions),
-                esc(&item.class)
+                xml::attr(&item.class)
             );
             for text in [&item.name, &item.long_name].into_iter().flatten() {
-                let _ = write!(s, " {}", esc(text));
+                let _ = write!(s, " {}", xml::attr(text));
             }
             if let Some(st) = status {
-                let _ = write!(s, " ({})", esc(st));
+                let _ = write!(s, " ({})", xml::attr(st));
             }
             let _ = writeln!(s, "</title></path>");
         }
@@ -178,7 +179,7 @@ pub fn to_svg(plan: &FloorPlan, options: &SvgOptions) -> String {
         num(-hi.y - m - title_h * 0.3),
         // Half the title band high, narrower when the text would be wider than the drawing.
         num((title_h * 0.5).min(w / (0.56 * title.chars().count().max(1) as f64))),
-        esc(&title)
+        xml::attr(&title)
     );
     scale_bar(
         &mut s,
@@ -233,7 +234,7 @@ fn labels(s: &mut String, plan: &FloorPlan) {
         let _ = write!(
             s,
             r#"<text data-global-id="{}" x="{}" y="{}" font-size="{}">"#,
-            esc(&item.global_id),
+            xml::attr(&item.global_id),
             num(at.x),
             num(-top + 0.35 * font),
             num(font)
@@ -248,7 +249,7 @@ fn labels(s: &mut String, plan: &FloorPlan) {
                 } else {
                     num(font * 1.1)
                 },
-                esc(line.trim())
+                xml::attr(line.trim())
             );
         }
         let _ = writeln!(s, "</text>");
@@ -430,7 +431,7 @@ fn legend(
             num(sw * 0.05),
             num(p.x + sw * 1.3),
             num(p.y + sw * 0.85),
-            esc(label)
+            xml::attr(label)
         );
     }
     let _ = writeln!(s, "</g>");
@@ -468,24 +469,6 @@ fn num(v: f64) -> String {
     }
 }
 
-/// Escapes text for XML content and attribute values.
-fn esc(text: &str) -> String {
-    let mut out = String::with_capacity(text.len());
-    for c in text.chars() {
-        match c {
-            '&' => out.push_str("&amp;"),
-            '<' => out.push_str("&lt;"),
-            '>' => out.push_str("&gt;"),
-            '"' => out.push_str("&quot;"),
-            '\'' => out.push_str("&apos;"),
-            // Characters XML 1.0 cannot hold.
-            c if (c as u32) < 0x20 && !matches!(c, '\t' | '\n' | '\r') => out.push(' '),
-            c => out.push(c),
-        }
-    }
-    out
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -496,9 +479,5 @@ mod tests {
         assert_eq!(num(-0.0001), "0");
         assert_eq!(num(2.5004), "2.5");
         assert_eq!(num(-3.1226), "-3.123");
-        assert_eq!(
-            esc("R&D <1> \"a\"\u{1}"),
-            "R&amp;D &lt;1&gt; &quot;a&quot; "
-        );
     }
 }

@@ -79,7 +79,7 @@ pub fn write_csv(
     metres_per_unit: f64,
     timestamp: &str,
 ) -> Result<(), ExportError> {
-    poinav_ifc::output::write_atomic(path, &to_csv(c, metres_per_unit, timestamp)).map_err(|e| {
+    poinav_io::write_atomic(path, &to_csv(c, metres_per_unit, timestamp)).map_err(|e| {
         ExportError::Write {
             path: path.display().to_string(),
             message: e.to_string(),

@@ -498,7 +498,7 @@ impl<'m> Editor<'m> {
         if same_file(path, self.model.file()) {
             return Err(EditError::WouldOverwriteInput(path.to_path_buf()));
         }
-        crate::output::write_atomic(path, &self.to_bytes()).map_err(|source| EditError::Io {
+        poinav_io::write_atomic(path, &self.to_bytes()).map_err(|source| EditError::Io {
             path: path.to_path_buf(),
             source,
         })

@@ -27,7 +27,6 @@ mod header;
 mod id;
 mod lines;
 mod model;
-pub mod output;
 pub mod property;
 mod scan;
 pub mod schema;

@@ -8,6 +8,7 @@
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
+use poinav_io::xml::attr;
 use poinav_poi::{AccessibilityStatus, RobotProfile, Role};
 use serde::Serialize;
 
@@ -524,7 +525,7 @@ pub fn slug(text: &str) -> String {
 }
 
 fn write(path: &Path, bytes: &[u8]) -> Result<(), NavError> {
-    poinav_ifc::output::write_atomic(path, bytes).map_err(|source| NavError::Write {
+    poinav_io::write_atomic(path, bytes).map_err(|source| NavError::Write {
         path: path.to_path_buf(),
         source,
     })
@@ -572,14 +573,6 @@ pub fn write_report(
     Ok(files)
 }
 
-/// Escapes text for HTML and XML.
-pub fn esc(s: &str) -> String {
-    s.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-        .replace('"', "&quot;")
-}
-
 fn report_html(report: &AuditReport, drawings: &[(usize, usize, String)]) -> String {
     let mut h = String::new();
     h.push_str(
@@ -596,18 +589,20 @@ figure{margin:1em 0}svg{max-width:100%;height:auto;border:1px solid #ddd}\n\
     let _ = writeln!(
         h,
         "<p>Storeys: {}. Profiles: {}.</p>",
-        esc(&report.floors.join(", ")),
-        esc(&report
-            .profiles
-            .iter()
-            .map(|p| p.profile.as_str())
-            .collect::<Vec<_>>()
-            .join(", "))
+        attr(&report.floors.join(", ")),
+        attr(
+            &report
+                .profiles
+                .iter()
+                .map(|p| p.profile.as_str())
+                .collect::<Vec<_>>()
+                .join(", ")
+        )
     );
     if !report.warnings.is_empty() {
         h.push_str("<ul class=\"warnings\">\n");
         for w in &report.warnings {
-            let _ = writeln!(h, "<li>{}</li>", esc(w));
+            let _ = writeln!(h, "<li>{}</li>", attr(w));
         }
         h.push_str("</ul>\n");
     }
@@ -615,7 +610,7 @@ figure{margin:1em 0}svg{max-width:100%;height:auto;border:1px solid #ddd}\n\
         let [full, restricted, blocked, pending] = p.door_counts();
         let (reach, unreach) = p.space_counts();
         let doorways = p.doors.iter().filter(|d| d.doorless).count();
-        let _ = writeln!(h, "<section>\n<h2>Profile {}</h2>", esc(&p.profile));
+        let _ = writeln!(h, "<section>\n<h2>Profile {}</h2>", attr(&p.profile));
         let _ = writeln!(
             h,
             "<p>Robot width {:.3} m, required clear width {:.3} m; grid inflated by {:.3} m (lethal) to {:.3} m (cost). Reachability from: {}.</p>",
@@ -626,7 +621,7 @@ figure{margin:1em 0}svg{max-width:100%;height:auto;border:1px solid #ddd}\n\
             if p.starts.is_empty() {
                 "nothing (no entrance found)".to_string()
             } else {
-                esc(&p.starts.join(", "))
+                attr(&p.starts.join(", "))
             }
         );
         let _ = writeln!(
@@ -641,8 +636,8 @@ figure{margin:1em 0}svg{max-width:100%;height:auto;border:1px solid #ddd}\n\
                     h,
                     "<p class=\"PENDING_VALIDATION\">The {} {} is PENDING_VALIDATION: {}.</p>",
                     c.kind,
-                    esc(c.name.as_deref().unwrap_or(&c.id)),
-                    esc(&c.reason)
+                    attr(c.name.as_deref().unwrap_or(&c.id)),
+                    attr(&c.reason)
                 );
             }
         }
@@ -652,8 +647,8 @@ figure{margin:1em 0}svg{max-width:100%;height:auto;border:1px solid #ddd}\n\
                     h,
                     "<figure>\n{}\n<figcaption>{} for {}</figcaption>\n</figure>",
                     text.replacen("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n", "", 1),
-                    esc(&report.floors[*fi]),
-                    esc(&p.profile)
+                    attr(&report.floors[*fi]),
+                    attr(&p.profile)
                 );
             }
         }
@@ -662,16 +657,16 @@ figure{margin:1em 0}svg{max-width:100%;height:auto;border:1px solid #ddd}\n\
             let _ = writeln!(
                 h,
                 "<tr><td>{}</td><td>{}</td><td>{:.3} m</td><td>{:.3} m</td><td class=\"{}\">{}</td><td>{}</td><td class=\"{}\">{}</td><td>{}</td></tr>",
-                esc(&d.floor_name),
-                esc(d.name.as_deref().unwrap_or(&d.id)),
+                attr(&d.floor_name),
+                attr(d.name.as_deref().unwrap_or(&d.id)),
                 d.clear_width_m,
                 d.required_width_m,
                 d.status.label(),
                 d.status.label(),
-                esc(&d.reason),
+                attr(&d.reason),
                 if d.grid_passable { "yes" } else { "no" },
                 if d.grid_passable { "yes" } else { "no" },
-                esc(&d.zones.join(" | "))
+                attr(&d.zones.join(" | "))
             );
         }
         h.push_str("</table>\n");
@@ -681,12 +676,12 @@ figure{margin:1em 0}svg{max-width:100%;height:auto;border:1px solid #ddd}\n\
                 let _ = writeln!(
                     h,
                     "<tr><td>{}</td><td>{}</td><td>{}</td><td class=\"{}\">{}</td><td>{}</td></tr>",
-                    esc(c.name.as_deref().unwrap_or(&c.id)),
+                    attr(c.name.as_deref().unwrap_or(&c.id)),
                     c.kind,
-                    esc(&c.floors.join(", ")),
+                    attr(&c.floors.join(", ")),
                     c.status.label(),
                     c.status.label(),
-                    esc(&c.reason)
+                    attr(&c.reason)
                 );
             }
             h.push_str("</table>\n");
@@ -703,10 +698,10 @@ figure{margin:1em 0}svg{max-width:100%;height:auto;border:1px solid #ddd}\n\
             let _ = writeln!(
                 h,
                 "<tr><td>{}</td><td>{}</td><td class=\"{class}\">{}</td><td>{}</td></tr>",
-                esc(&s.floor_name),
-                esc(s.name.as_deref().unwrap_or(&s.id)),
+                attr(&s.floor_name),
+                attr(s.name.as_deref().unwrap_or(&s.id)),
                 if s.reachable { "yes" } else { "no" },
-                esc(&s.reason)
+                attr(&s.reason)
             );
         }
         h.push_str("</table>\n</section>\n");

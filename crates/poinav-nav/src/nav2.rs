@@ -166,7 +166,7 @@ pub fn scale_pixel(value: u8) -> u8 {
 }
 
 fn write(files: &mut Vec<PathBuf>, path: PathBuf, bytes: &[u8]) -> Result<(), NavError> {
-    poinav_ifc::output::write_atomic(&path, bytes).map_err(|source| NavError::Write {
+    poinav_io::write_atomic(&path, bytes).map_err(|source| NavError::Write {
         path: path.clone(),
         source,
     })?;

@@ -12,10 +12,11 @@ use std::fmt::Write as _;
 use glam::DVec2;
 use poinav_poi::AccessibilityStatus;
 
-use crate::audit::{esc, ProfileAudit};
+use crate::audit::ProfileAudit;
 use crate::building::Building;
 use crate::floor::{Floor, ObstacleKind};
 use crate::polygon;
+use poinav_io::xml::attr;
 
 /// Fill of a door passage with this status.
 pub fn status_colour(s: AccessibilityStatus) -> &'static str {
@@ -106,7 +107,7 @@ pub fn audit_svg(
         s,
         "<text x=\"{margin:.3}\" y=\"{:.3}\" font-size=\"{title_fs:.3}\" font-weight=\"bold\">{}</text>",
         1.3 * unit,
-        esc(&title)
+        attr(&title)
     );
 
     // Spaces.
@@ -127,9 +128,9 @@ pub fn audit_svg(
             "<path d=\"{}\" fill=\"{fill}\" stroke-width=\"{:.3}\" data-global-id=\"{}\"><title>{}: {}</title></path>",
             view.path(&z.ring),
             0.02 * unit,
-            esc(&z.id),
-            esc(space.name.as_deref().unwrap_or(&space.id)),
-            esc(&space.reason)
+            attr(&z.id),
+            attr(space.name.as_deref().unwrap_or(&space.id)),
+            attr(&space.reason)
         );
     }
     s.push_str("</g>\n");
@@ -149,10 +150,10 @@ pub fn audit_svg(
             s,
             "<path d=\"{}\" fill=\"{fill}\" fill-opacity=\"{opacity}\" data-global-id=\"{}\" data-class=\"{}\"><title>{} {}</title></path>",
             d.join(" "),
-            esc(&o.id),
-            esc(&o.class),
-            esc(&o.class),
-            esc(&o.id)
+            attr(&o.id),
+            attr(&o.class),
+            attr(&o.class),
+            attr(&o.id)
         );
     }
     s.push_str("</g>\n");
@@ -188,10 +189,10 @@ pub fn audit_svg(
             "<path d=\"{}\" fill=\"{}\"{dash} data-global-id=\"{}\"><title>{}: {} - {}{}</title></path>",
             view.path(&ring),
             status_colour(d.status),
-            esc(&d.id),
-            esc(d.name.as_deref().unwrap_or(&d.id)),
+            attr(&d.id),
+            attr(d.name.as_deref().unwrap_or(&d.id)),
             d.status.label(),
-            esc(&d.reason),
+            attr(&d.reason),
             if d.grid_passable {
                 ""
             } else {
@@ -213,9 +214,9 @@ pub fn audit_svg(
                 status_colour(t.status),
                 0.02 * unit,
                 c.kind.label(),
-                esc(c.label()),
+                attr(c.label()),
                 t.status.label(),
-                esc(&t.reason)
+                attr(&t.reason)
             );
         }
     }
@@ -234,7 +235,7 @@ pub fn audit_svg(
         let _ = writeln!(
             s,
             "<text x=\"{x:.3}\" y=\"{y:.3}\" font-size=\"{fs:.3}\">{}</text>",
-            esc(name)
+            attr(name)
         );
     }
     s.push_str("</g>\n");

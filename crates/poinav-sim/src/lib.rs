@@ -14,7 +14,6 @@
 //! ```
 
 pub mod algorithm1;
-pub mod atomic_file;
 pub mod building;
 pub mod controller;
 pub mod demo_floor;

@@ -9,12 +9,12 @@ use poinav_nav::Floor;
 use poinav_poi::runtime::{self, Observation};
 use poinav_poi::{Classification, WriteOptions};
 
-use crate::atomic_file::AtomicFile;
 use crate::error::SimError;
 use crate::plot;
 use crate::recorder::TraceOut;
 use crate::run::{run_with, Outcome};
 use crate::scenario::Scenario;
+use poinav_io::AtomicFile;
 
 fn io(path: &Path, e: std::io::Error) -> SimError {
     SimError::Io {
@@ -35,7 +35,7 @@ pub fn write_outputs(
     let mut written = Vec::new();
     if let Some(trace) = &outcome.trace {
         let path = dir.join(TRACE);
-        poinav_ifc::output::write_atomic(&path, trace).map_err(|e| io(&path, e))?;
+        poinav_io::write_atomic(&path, trace).map_err(|e| io(&path, e))?;
         written.push(path);
     }
     written.extend(write_summary_and_plots(dir, outcome, floor)?);
@@ -61,7 +61,7 @@ fn write_summary_and_plots(
     let mut written = Vec::new();
     for (name, text) in files {
         let path = dir.join(name);
-        poinav_ifc::output::write_atomic(&path, text.as_bytes()).map_err(|e| io(&path, e))?;
+        poinav_io::write_atomic(&path, text.as_bytes()).map_err(|e| io(&path, e))?;
         written.push(path);
     }
     Ok(written)

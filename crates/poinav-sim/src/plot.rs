@@ -7,6 +7,7 @@
 use std::fmt::Write;
 
 use glam::DVec2;
+use poinav_io::xml::attr;
 use poinav_nav::Floor;
 use poinav_poi::AccessibilityStatus;
 
@@ -22,13 +23,6 @@ pub const COLOURS: [&str; 8] = [
 
 fn colour(i: usize) -> &'static str {
     COLOURS[i % COLOURS.len()]
-}
-
-fn esc(s: &str) -> String {
-    s.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-        .replace('"', "&quot;")
 }
 
 fn f(v: f64) -> String {
@@ -76,7 +70,7 @@ pub fn trajectories(outcome: &Outcome, floor: &Floor) -> String {
             r##"<text x="{}" y="{}" font-size="11" fill="#888888" text-anchor="middle">{}</text>"##,
             f(x),
             f(y),
-            esc(label)
+            attr(label)
         );
     }
     for o in &floor.obstacles {
@@ -97,7 +91,7 @@ pub fn trajectories(outcome: &Outcome, floor: &Floor) -> String {
             s,
             r#"<polygon points="{}" fill="{fill}" fill-opacity="0.8"><title>{} {}</title></polygon>"#,
             poly(&d.ring),
-            esc(d.name.as_deref().unwrap_or(&d.id)),
+            attr(d.name.as_deref().unwrap_or(&d.id)),
             status.label()
         );
     }
@@ -119,7 +113,7 @@ pub fn trajectories(outcome: &Outcome, floor: &Floor) -> String {
             s,
             r#"<polyline points="{}" fill="none" stroke="{c}" stroke-width="2"><title>{}</title></polyline>"#,
             pts.join(" "),
-            esc(name)
+            attr(name)
         );
         if let (Some(first), Some(last)) = (mine.first(), last) {
             let (x, y) = px(first.pos);
@@ -146,7 +140,7 @@ pub fn trajectories(outcome: &Outcome, floor: &Floor) -> String {
                 f(ly - 4.0),
                 f(margin + 24.0),
                 f(ly),
-                esc(name)
+                attr(name)
             );
         }
     }
@@ -193,7 +187,7 @@ fn chart(
         s,
         r#"<text x="{}" y="20" font-size="14" text-anchor="middle">{}</text>"#,
         f(w / 2.0),
-        esc(title)
+        attr(title)
     );
     let nice = |max: f64| -> f64 {
         let raw = max / 8.0;
@@ -261,7 +255,7 @@ fn chart(
         r#"<text x="14" y="{}" font-size="12" text-anchor="middle" transform="rotate(-90 14 {})">{}</text>"#,
         f(h / 2.0),
         f(h / 2.0),
-        esc(y_label)
+        attr(y_label)
     );
     for (v, label) in hlines {
         let (a, b) = px(0.0, *v);
@@ -274,7 +268,7 @@ fn chart(
             f(b),
             f(w - right - 4.0),
             f(b - 4.0),
-            esc(label)
+            attr(label)
         );
     }
     for (k, se) in series.iter().enumerate() {
@@ -303,7 +297,7 @@ fn chart(
                 se.colour,
                 f(w - right - 126.0),
                 f(ly),
-                esc(&se.name)
+                attr(&se.name)
             );
         }
     }

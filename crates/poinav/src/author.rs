@@ -61,7 +61,7 @@ pub fn demo_building(args: &DemoBuildingArgs) -> anyhow::Result<ExitCode> {
         ..DemoBuilding::default()
     };
     let bytes = poinav_author::demo_building(&spec, &timestamp())?;
-    poinav_ifc::output::write_atomic(&args.output, &bytes)
+    poinav_io::write_atomic(&args.output, &bytes)
         .with_context(|| format!("writing {}", args.output.display()))?;
     let layout = spec.layout();
     outln!(

@@ -9,7 +9,8 @@ use std::process::ExitCode;
 
 use anyhow::Context;
 use poinav_author::DemoBuilding;
-use poinav_ifc::{output::write_atomic, spatial, units, Model};
+use poinav_ifc::{spatial, units, Model};
+use poinav_io::{write_atomic, xml::attr};
 use poinav_poi::{
     classify, write_enrichment, AccessibilityStatus, RobotProfile, RuleSet, WriteOptions,
 };
@@ -259,13 +260,6 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     })
 }
 
-fn escape(s: &str) -> String {
-    s.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-        .replace('"', "&quot;")
-}
-
 fn scenario_html(name: &str, runs: &[VariantRun], out: &Path) -> String {
     let mut h = String::new();
     for r in runs {
@@ -273,14 +267,14 @@ fn scenario_html(name: &str, runs: &[VariantRun], out: &Path) -> String {
             Some(v) => format!("{name} — {v}"),
             None => name.to_string(),
         };
-        let _ = write!(h, "<section><h2>{}</h2><table><tr><th>expectation</th><th>expected</th><th>measured</th><th></th></tr>", escape(&title));
+        let _ = write!(h, "<section><h2>{}</h2><table><tr><th>expectation</th><th>expected</th><th>measured</th><th></th></tr>", attr(&title));
         for j in &r.outcome.judged {
             let _ = write!(
                 h,
                 "<tr><td>{}</td><td>{}</td><td><code>{}</code></td><td class=\"{}\">{}</td></tr>",
-                escape(j.kind),
-                escape(&j.expected),
-                escape(&j.measured.to_string()),
+                attr(j.kind),
+                attr(&j.expected),
+                attr(&j.measured.to_string()),
                 if j.pass { "pass" } else { "fail" },
                 if j.pass { "PASS" } else { "FAIL" }
             );
@@ -292,7 +286,7 @@ fn scenario_html(name: &str, runs: &[VariantRun], out: &Path) -> String {
                 let _ = write!(
                     h,
                     "<img src=\"{}\" alt=\"{plot}\">",
-                    escape(&rel.join(plot).to_string_lossy())
+                    attr(&rel.join(plot).to_string_lossy())
                 );
             }
         }
@@ -320,12 +314,7 @@ fn report_html(steps: &[Step], sections: &str, all: bool, stamp: &str) -> String
         }
     );
     for s in steps {
-        let _ = write!(
-            h,
-            "<li><b>{}</b>: {}</li>",
-            escape(&s.title),
-            escape(&s.detail)
-        );
+        let _ = write!(h, "<li><b>{}</b>: {}</li>", attr(&s.title), attr(&s.detail));
     }
     h.push_str("</ol>");
     h.push_str(sections);

@@ -100,7 +100,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
             ..SvgOptions::default()
         },
     );
-    poinav_ifc::output::write_atomic(&args.output, svg.as_bytes())
+    poinav_io::write_atomic(&args.output, svg.as_bytes())
         .with_context(|| format!("writing {}", args.output.display()))?;
     crate::progress::end();
     let doorways = match plan.openings.len() {

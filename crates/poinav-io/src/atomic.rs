@@ -19,16 +19,7 @@ pub fn write_atomic_with(
     path: &Path,
     write: impl FnOnce(&mut BufWriter<&File>) -> std::io::Result<()>,
 ) -> std::io::Result<()> {
-    let dir = match path.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p,
-        _ => Path::new("."),
-    };
-    sweep_stale(dir);
-    let prefix = format!(".poinav-{}-", std::process::id());
-    let tmp = tempfile::Builder::new()
-        .prefix(&prefix)
-        .suffix(".tmp")
-        .tempfile_in(dir)?;
+    let tmp = temporary_beside(path)?;
     {
         let mut w = BufWriter::with_capacity(1 << 16, tmp.as_file());
         write(&mut w)?;
@@ -43,6 +34,20 @@ pub fn write_atomic_with(
     }
     tmp.persist(path).map_err(|e| e.error)?;
     Ok(())
+}
+
+/// A new temporary file `.poinav-<pid>-<random>.tmp` in `path`'s folder (which must exist),
+/// after sweeping the ones dead processes left there.
+pub(crate) fn temporary_beside(path: &Path) -> std::io::Result<tempfile::NamedTempFile> {
+    let dir = match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    };
+    sweep_stale(dir);
+    tempfile::Builder::new()
+        .prefix(&format!(".poinav-{}-", std::process::id()))
+        .suffix(".tmp")
+        .tempfile_in(dir)
 }
 
 /// The process id in a temporary file name `.poinav-<pid>-<random>.tmp`.

@@ -1,6 +1,6 @@
 //! A file written as it is produced and published atomically: the bytes go to a temporary file
-//! beside the target (named like `poinav_ifc::output`'s, `.poinav-<pid>-<random>.tmp`, so a
-//! later write sweeps one left by a killed process), which is synced and renamed over the
+//! beside the target (made by [`crate::atomic`]: `.poinav-<pid>-<random>.tmp`, so a later
+//! write sweeps one left by a killed process), which is synced and renamed over the
 //! target by [`AtomicFile::commit`]; dropped without a commit, it is removed. A long trace is
 //! streamed to disk this way without ever being held in memory, and a reader never sees half.
 
@@ -19,14 +19,7 @@ pub struct AtomicFile {
 impl AtomicFile {
     /// Starts writing what will become `path` (its folder must exist).
     pub fn create(path: &Path) -> std::io::Result<AtomicFile> {
-        let dir = match path.parent() {
-            Some(p) if !p.as_os_str().is_empty() => p,
-            _ => Path::new("."),
-        };
-        let tmp = tempfile::Builder::new()
-            .prefix(&format!(".poinav-{}-", std::process::id()))
-            .suffix(".tmp")
-            .tempfile_in(dir)?;
+        let tmp = crate::atomic::temporary_beside(path)?;
         Ok(AtomicFile {
             out: BufWriter::with_capacity(1 << 20, tmp),
             path: path.to_path_buf(),

@@ -1,0 +1,11 @@
+//! Writing output files, shared by every crate that writes one: atomic file output
+//! ([`atomic`]; [`atomic_file`] for output streamed as it is produced) and XML/HTML/SVG
+//! escaping ([`xml`]). Deliberately small and free of IFC (STEP) and geometry, so a crate that
+//! only writes files does not pull in the STEP reader.
+
+pub mod atomic;
+pub mod atomic_file;
+pub mod xml;
+
+pub use atomic::{write_atomic, write_atomic_with};
+pub use atomic_file::AtomicFile;
