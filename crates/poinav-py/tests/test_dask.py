@@ -1,6 +1,8 @@
 """poinav.dask on a 2-worker LocalCluster: the corpus audited for two profiles, and the
 door-width sweep of the doorway scenario with its flip widths."""
 
+from pathlib import Path
+
 import pytest
 from conftest import PROFILES, corpus_files
 
@@ -24,23 +26,28 @@ def test_audit_corpus(client):
     # One profile keeps the test short (several profiles per file: test_building's audit).
     table = poinav.dask.audit_files(client, files, profiles=["paper"])
     assert len(table) == len(files)
-    assert table["error"].isna().all(), table[table["error"].notna()]
-    assert set(table["profile"]) == {"paper-robot"}
+    # Kilometres of railway track (meshed since alignments are read) do not fit a 5 cm grid:
+    # that file's row names the limit; every other file audits without an error.
+    errors = table[table["error"].notna()]
+    assert [Path(f).name for f in errors["file"]] == ["railway-track-ifc4x3.ifc"], errors
+    assert "grid is more than 400000000 cells: raise the resolution" in errors["error"].iloc[0]
+    assert set(table.loc[table["error"].isna(), "profile"]) == {"paper-robot"}
     by = table.set_index("file")
     fzk = by.loc[str(next(f for f in files if f.name == "fzk-haus-ifc4.ifc"))]
     assert fzk[["door_passages", "full", "restricted", "blocked", "spaces_reachable"]].tolist() == [5, 2, 3, 0, 6]
     office = by.loc[str(next(f for f in files if f.name == "office-a.ifc"))]
     assert office["door_passages"] == 104 and office["full"] == 99 and office["restricted"] == 5
     assert office["spaces_reachable"] == 99
-    railway = by.loc[str(next(f for f in files if f.name == "railway-track-ifc4x3.ifc"))]
-    assert railway["door_passages"] == 0
     # The same rows without a cluster, the file sent as bytes.
     profiles = ["paper", PROFILES / "wide-cart.toml"]
     here = poinav.dask.audit_files(None, [files[0]], profiles=profiles, ship_bytes=True)
     assert len(here) == 2
     assert here["full"].iloc[1] <= here["full"].iloc[0]
-    assert here.iloc[:1].drop(columns="file").equals(
-        table[table["file"] == str(files[0])].drop(columns="file").reset_index(drop=True))
+    # Value for value (the corpus table's counts are floats: the railway's row has none).
+    mine = here.iloc[0].drop(["file", "error"])
+    theirs = table[table["file"] == str(files[0])].iloc[0].drop(["file", "error"])
+    assert list(mine.index) == list(theirs.index)
+    assert all(a == b for a, b in zip(mine, theirs)), (mine, theirs)
 
 
 def test_door_width_sweep(client):
