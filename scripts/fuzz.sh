@@ -39,6 +39,9 @@ case "${POINAV_FUZZ_BUILD:-quick}" in
     dev) build=(); out=debug; flags+=(-Cdebug-assertions) ;;
     *) echo "fuzz.sh: POINAV_FUZZ_BUILD is quick, full or dev" >&2; exit 2 ;;
 esac
+# fuzz/ is its own workspace: bring its lock file's entries for our crates up to date with
+# theirs (a new dependency of a poinav crate), without moving any registry version.
+cargo update --workspace --offline --quiet
 # --target keeps the flags away from build scripts and proc macros (as cargo-fuzz does).
 RUSTFLAGS="${flags[*]} ${RUSTFLAGS:-}" CARGO_FUZZ=1 \
     cargo build --locked --bins --target "$triple" "${build[@]}"
