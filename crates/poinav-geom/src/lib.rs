@@ -81,6 +81,8 @@ pub mod sweep;
 pub mod swept_area;
 pub mod swept_disk;
 pub mod tapered_extrusion;
+#[cfg(test)]
+mod test_model;
 pub mod triangulation;
 mod unit_assignment;
 pub mod uv_mesh;

@@ -93,10 +93,7 @@ mod tests {
     use std::sync::Arc;
 
     fn model(data: &str) -> Model {
-        let text = format!(
-            "ISO-10303-21;HEADER;FILE_SCHEMA(('IFC4X3_ADD2'));ENDSEC;DATA;\n{data}\nENDSEC;END-ISO-10303-21;"
-        );
-        Model::from_bytes("t.ifc", text.into_bytes()).unwrap()
+        crate::test_model::with_schema("IFC4X3_ADD2", data)
     }
 
     /// A straight alignment along +y from (100, 0), then a gradient of 2 %.

@@ -210,10 +210,7 @@ mod tests {
     use glam::DVec3;
 
     fn model(data: &str) -> Model {
-        let text = format!(
-            "ISO-10303-21;HEADER;FILE_SCHEMA(('IFC4'));ENDSEC;DATA;\n{data}\nENDSEC;END-ISO-10303-21;"
-        );
-        Model::from_bytes("t.ifc", text.into_bytes()).unwrap()
+        crate::test_model::ifc4(data)
     }
 
     const AXES: &str = "#1=IFCCARTESIANPOINT((0.,0.,0.));#2=IFCDIRECTION((0.,0.,1.));\

@@ -396,10 +396,7 @@ mod tests {
     use poinav_ifc::Model;
 
     fn model(data: &str) -> Model {
-        let text = format!(
-            "ISO-10303-21;HEADER;FILE_SCHEMA(('IFC4'));ENDSEC;DATA;\n{data}\nENDSEC;END-ISO-10303-21;"
-        );
-        Model::from_bytes("t.ifc", text.into_bytes()).unwrap()
+        crate::test_model::ifc4(data)
     }
 
     #[test]

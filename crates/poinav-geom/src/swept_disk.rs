@@ -154,10 +154,7 @@ mod tests {
     use std::f64::consts::PI;
 
     fn model(data: &str) -> Model {
-        let text = format!(
-            "ISO-10303-21;HEADER;FILE_SCHEMA(('IFC4'));ENDSEC;DATA;\n{data}\nENDSEC;END-ISO-10303-21;"
-        );
-        Model::from_bytes("t.ifc", text.into_bytes()).unwrap()
+        crate::test_model::ifc4(data)
     }
 
     const PATH: &str = "#1=IFCCARTESIANPOINT((0.,0.,0.));#2=IFCCARTESIANPOINT((4000.,0.,0.));\
