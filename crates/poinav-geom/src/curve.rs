@@ -161,15 +161,15 @@ pub(crate) fn read_trim(
 fn trimmed_curve(curve: Entity<'_>, units: &Units) -> Result<Vec<DVec2>, GeomError> {
     let s = units.metres_per_unit;
     let basis = required_ref(&curve, "BasisCurve", "IfcCurve")?;
-    let t1 = read_trim(&curve, "Trim1", s)?;
-    let t2 = read_trim(&curve, "Trim2", s)?;
-    let sense = curve.get("SenseAgreement").and_then(|v| v.as_enum()) != Some("F");
-    let prefer_point =
-        curve.get("MasterRepresentation").and_then(|v| v.as_enum()) == Some("CARTESIAN");
     if basis.is_a("IfcCircle") || basis.is_a("IfcEllipse") || basis.is_a("IfcPolyline") {
-        // Conics by angle, polylines by point index plus fraction.
+        // Conics by angle, polylines by point index plus fraction: curve3d reads the trims.
         Ok(flat(&crate::curve3d::path(curve, units)?))
     } else if basis.is_a("IfcLine") {
+        let t1 = read_trim(&curve, "Trim1", s)?;
+        let t2 = read_trim(&curve, "Trim2", s)?;
+        let sense = curve.get("SenseAgreement").and_then(|v| v.as_enum()) != Some("F");
+        let prefer_point =
+            curve.get("MasterRepresentation").and_then(|v| v.as_enum()) == Some("CARTESIAN");
         let origin = point2(required_ref(&basis, "Pnt", "IfcCartesianPoint")?)? * s;
         let vector = required_ref(&basis, "Dir", "IfcVector")?;
         let dir =
