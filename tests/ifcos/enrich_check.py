@@ -79,23 +79,24 @@ def touched(before, after):
     """The instances whose validation can differ between BEFORE and AFTER, given that every
     instance of BEFORE is in AFTER unchanged or removed (the Rust side asserts it byte for
     byte): the added ones, and those an added or removed instance refers to (their inverse
-    attributes change). Everything else has the same attributes and the same inverses."""
+    attributes change). Everything else has the same attributes and the same inverses.
+    Returns the ids to validate in AFTER and in BEFORE, and the added ids."""
     old = {e.id() for e in before}
     new = {e.id() for e in after}
     added, removed = new - old, old - new
     changed = referenced(after, added) | referenced(before, removed)
-    return sorted(added | (changed & new)), sorted(changed & old & new)
+    return sorted(added | (changed & new)), sorted(changed & old & new), added
 
 
-def duplicate_guids(before, after):
-    """GlobalIds an added instance shares with any other instance (validate checks uniqueness
-    only among the instances it visits)."""
-    old = {e.id() for e in before}
-    seen = collections.Counter(e.GlobalId for e in after.by_type("IfcRoot"))
+def duplicate_guids(after, added):
+    """GlobalIds an added instance shares with any other instance of AFTER (validate checks
+    uniqueness only among the instances it visits)."""
+    roots = after.by_type("IfcRoot")
+    seen = collections.Counter(e.GlobalId for e in roots)
     return sorted(
         f"GlobalId {e.GlobalId} of #{e.id()} is not unique"
-        for e in after.by_type("IfcRoot")
-        if e.id() not in old and seen[e.GlobalId] > 1
+        for e in roots
+        if e.id() in added and seen[e.GlobalId] > 1
     )
 
 
@@ -132,9 +133,9 @@ def main(argv):
                 storeys[element.GlobalId] = storey.Name if (storey.Name or "").strip() else storey.GlobalId
     new_errors = []
     if validate:
-        in_after, in_before = touched(before, after)
+        in_after, in_before, added = touched(before, after)
         new_errors = sorted((errors(after, in_after) - errors(before, in_before)).elements())
-        new_errors += duplicate_guids(before, after)
+        new_errors += duplicate_guids(after, added)
     json.dump({"psets": psets, "storeys": storeys, "new_errors": new_errors}, sys.stdout, indent=1, sort_keys=True, default=str)
     sys.stdout.write("\n")
     return 0
