@@ -36,7 +36,7 @@ const ALLOWED: &[(&str, &[&str])] = &[
         "poinav-bcf",
         &["poinav-io", "poinav-ifc", "poinav-poi", "poinav-nav"],
     ),
-    ("poinav-mcap", &["poinav-poi", "poinav-nav"]),
+    ("poinav-mcap", &["poinav-io", "poinav-poi", "poinav-nav"]),
     ("poinav-viewer", &["poinav-poi", "poinav-nav", "poinav-sim"]),
     (
         "poinav",

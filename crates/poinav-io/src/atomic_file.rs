@@ -4,7 +4,7 @@
 //! target by [`AtomicFile::commit`]; dropped without a commit, it is removed. A long trace is
 //! streamed to disk this way without ever being held in memory, and a reader never sees half.
 
-use std::io::{BufWriter, Write};
+use std::io::{BufWriter, Seek, SeekFrom, Write};
 use std::path::{Path, PathBuf};
 
 use tempfile::NamedTempFile;
@@ -60,6 +60,14 @@ impl Write for AtomicFile {
     }
 }
 
+/// Seeking flushes the buffer first (`BufWriter`'s rule), so writers that patch a header or
+/// an index afterwards (MCAP's summary offsets) work on the temporary file as on any file.
+impl Seek for AtomicFile {
+    fn seek(&mut self, pos: SeekFrom) -> std::io::Result<u64> {
+        self.out.seek(pos)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -79,5 +87,20 @@ mod tests {
         drop(g);
         assert_eq!(std::fs::read(&target).unwrap(), b"line 1\nline 2\n");
         assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
+    }
+
+    #[test]
+    fn a_seek_back_patches_what_was_written() {
+        let dir = tempfile::tempdir().unwrap();
+        let target = dir.path().join("run.mcap");
+        let mut f = AtomicFile::create(&target).unwrap();
+        f.write_all(b"0000body").unwrap();
+        assert_eq!(f.stream_position().unwrap(), 8);
+        f.seek(SeekFrom::Start(0)).unwrap();
+        f.write_all(b"HEAD").unwrap();
+        f.seek(SeekFrom::End(0)).unwrap();
+        f.write_all(b"!").unwrap();
+        f.commit().unwrap();
+        assert_eq!(std::fs::read(&target).unwrap(), b"HEADbody!");
     }
 }

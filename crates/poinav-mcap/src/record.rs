@@ -13,7 +13,7 @@
 //! `t` and `robot`).
 
 use std::collections::BTreeMap;
-use std::io::{BufRead, BufReader, BufWriter, Write};
+use std::io::{BufRead, BufReader, Write};
 use std::path::Path;
 
 use mcap::records::MessageHeader;
@@ -249,26 +249,15 @@ pub fn write_recording(
         path: out.to_path_buf(),
         source: e,
     };
-    let dir = match out.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
-        _ => std::path::PathBuf::from("."),
-    };
-    let tmp = tempfile::Builder::new()
-        .prefix(&format!(".poinav-{}-", std::process::id()))
-        .suffix(".tmp")
-        .tempfile_in(&dir)
-        .map_err(io)?;
-    let file = tmp.as_file().try_clone().map_err(io)?;
+    let file = poinav_io::AtomicFile::create(out).map_err(io)?;
     let opts = mcap::WriteOptions::new()
         .profile("ros2")
         .library("poinav-mcap")
         .compression(None);
-    let w = opts
-        .create(BufWriter::new(file))
-        .map_err(|e| McapError::Mcap {
-            path: out.to_path_buf(),
-            source: e,
-        })?;
+    let w = opts.create(file).map_err(|e| McapError::Mcap {
+        path: out.to_path_buf(),
+        source: e,
+    })?;
     let mut o = Out {
         w,
         path: out.to_path_buf(),
@@ -278,17 +267,7 @@ pub fn write_recording(
     };
     record(&mut o, &mut reader, &trace_name, scene, start)?;
     o.w.finish().map_err(|e| o.err(e))?;
-    let mut buffered = o.w.into_inner();
-    buffered.flush().map_err(io)?;
-    let file = buffered.into_inner().map_err(|e| io(e.into_error()))?;
-    file.sync_all().map_err(io)?;
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::PermissionsExt;
-        file.set_permissions(std::fs::Permissions::from_mode(0o644))
-            .map_err(io)?;
-    }
-    tmp.persist(out).map_err(|e| io(e.error))?;
+    o.w.into_inner().commit().map_err(io)?;
     Ok(o.summary)
 }
 
