@@ -50,8 +50,8 @@ bin="$root/fuzz/target/$triple/$out"
 shared="${POINAV_SHARED:-$root/../shared}"
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
-for t in "${targets[@]}"; do
-    corpus="$work/$t"
+run() {
+    local t=$1 corpus="$work/$1"
     mkdir -p "$corpus" "$root/fuzz/artifacts/$t"
     cp "seeds/$t"/* "$corpus/"
     if [[ $t == step_reader || $t == enrichment ]]; then
@@ -59,9 +59,42 @@ for t in "${targets[@]}"; do
             [[ -f $f ]] && cp "$f" "$corpus/"
         done
     fi
-    echo "fuzz: $t for ${seconds}s"
     # A fixed seed: every run explores the same inputs first, so CI is reproducible. A crash
-    # exits non-zero (pipefail) and leaves its input in fuzz/artifacts/<target>/.
+    # exits non-zero and leaves its input in fuzz/artifacts/<target>/.
     "$bin/$t" "$corpus" -artifact_prefix="$root/fuzz/artifacts/$t/" -seed="${POINAV_FUZZ_SEED:-1}" \
-        -max_total_time="$seconds" -max_len=65536 -timeout=10 -rss_limit_mb=2048 2>&1 | tail -n 3
+        -max_total_time="$seconds" -max_len=65536 -timeout=10 -rss_limit_mb=2048 \
+        > "$work/$t.log" 2>&1
+}
+# Each libFuzzer run uses one core: as many targets at once as there are cores
+# (POINAV_FUZZ_JOBS), each reported with the last lines of its log when it ends.
+jobs="${POINAV_FUZZ_JOBS:-$(nproc)}"
+failed=()
+pending=("${targets[@]}")
+declare -A pid_of=()
+while ((${#pending[@]} || ${#pid_of[@]})); do
+    while ((${#pending[@]})) && ((${#pid_of[@]} < jobs)); do
+        t=${pending[0]}
+        pending=("${pending[@]:1}")
+        echo "fuzz: $t for ${seconds}s"
+        run "$t" &
+        pid_of[$t]=$!
+    done
+    for t in "${!pid_of[@]}"; do
+        if ! kill -0 "${pid_of[$t]}" 2>/dev/null; then
+            if wait "${pid_of[$t]}"; then
+                echo "fuzz: $t done"
+                tail -n 3 "$work/$t.log"
+            else
+                echo "fuzz: $t FAILED"
+                tail -n 40 "$work/$t.log"
+                failed+=("$t")
+            fi
+            unset "pid_of[$t]"
+        fi
+    done
+    sleep 1
 done
+if ((${#failed[@]})); then
+    echo "fuzz: failed: ${failed[*]}" >&2
+    exit 1
+fi
