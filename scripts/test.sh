@@ -20,8 +20,10 @@ cargo fmt --all --check
 cargo clippy --workspace --all-targets --locked -- -D warnings
 # The tests build with the `ci` profile (Cargo.toml: the dev profile's debug assertions and
 # overflow checks, optimised; no debug info for dependencies), which runs the corpus tests
-# several times faster than unoptimised code at a small cost in build time.
-cargo test --workspace --locked --profile ci
+# several times faster than unoptimised code at a small cost in build time. test-lanes.py is
+# `cargo test --workspace --locked --profile ci` with the test binaries and the doc tests run
+# on as many lanes as there are cores (most of ours keep one core busy, not two).
+python3 scripts/test-lanes.py --profile ci
 # The Python package: the wheel (ci profile, reusing the tests' build), pytest in .venv-wheel.
 bash scripts/test-python.sh
 
