@@ -117,6 +117,9 @@ try {
   await page.keyboard.up('ArrowUp');
   await pause(400);
   const f1 = await hook(() => ({ ...window.poinav.motion }));
+  // What the robots' frames showed (under software WebGL: the kept picture with the robots
+  // drawn over it) is what drawing the whole view shows.
+  const still = await hook(() => window.poinav.stillDiff());
   const after = await robots();
   const moved = Math.hypot(after[0].x - before[0].x, after[0].y - before[0].y);
   const other = Math.hypot(after[1].x - before[1].x, after[1].y - before[1].y);
@@ -124,6 +127,7 @@ try {
   const contacts = await page.$$eval('#events li', (lis) => lis.map((li) => li.textContent).filter((t) => t.includes('contact with Robot')));
   check('ArrowUp drives Robot1 without touching Robot2', moved >= 1 && other < 1e-6 && contacts.length === 0 && apart > 0.8,
     { moved_m: moved, robot2_moved_m: other, apart_m: apart, contacts });
+  check('robots drawn over the kept picture as in a whole drawing', still.differ <= still.pixels * 0.001, still);
   // Frames drawn while the robots moved, per second they moved (a robot at a wall stops, and
   // nothing is drawn then).
   report.frames_per_s = (f1.frames - f0.frames) / ((f1.ms - f0.ms) / 1000);

@@ -915,10 +915,10 @@ hook.countColours = (colours, tol = 30) => {
 // The door passages drawn on the storey: id, status and colour.
 hook.doors = () => [...(doors?.items.values() ?? [])].map((d) => ({ id: d.id, status: elementsById.get(d.id)?.data.AccessibilityStatus ?? d.status, colour: d.shown }));
 // What drawing the whole view costs: draw calls and triangles (all, and the building's); the
-// draw calls of the last frame (with the still picture: copying it, then the robots); frames
-// drawn; whether WebGL is software (and so the still picture used).
+// draw calls and pixels of the last frame (with the still picture: copying it, then the
+// robots); frames drawn; whether WebGL is software (and so the still picture used).
 hook.renderInfo = () => ({
-  calls: costs.calls, triangles: costs.triangles, frame_calls: costs.frameCalls, frames: hook.frames,
+  calls: costs.calls, triangles: costs.triangles, frame_calls: costs.frameCalls, frame_pixels: costs.pixels, frames: hook.frames,
   building: building.cost(), software: hook.software,
 });
 // Milliseconds one frame takes to draw, averaged over `n` frames drawn back to back (each
@@ -936,6 +936,27 @@ hook.renderTime = (n = 10, whole = true) => {
   const t0 = performance.now();
   for (let k = 0; k < n; k += 1) once();
   return (performance.now() - t0) / n;
+};
+// Pixels of the view as shown now (with the still picture: kept, then robots drawn over it)
+// that differ (sum of |dr|+|dg|+|db| over `tol`) from the view drawn whole again.
+hook.stillDiff = (tol = 24) => {
+  const grab = () => {
+    const c = document.createElement('canvas');
+    c.width = renderer.domElement.width;
+    c.height = renderer.domElement.height;
+    const g = c.getContext('2d');
+    g.drawImage(renderer.domElement, 0, 0);
+    return g.getImageData(0, 0, c.width, c.height).data;
+  };
+  const shown = grab();
+  redraw();
+  draw();
+  const whole = grab();
+  let differ = 0;
+  for (let i = 0; i < shown.length; i += 4) {
+    if (Math.abs(shown[i] - whole[i]) + Math.abs(shown[i + 1] - whole[i + 1]) + Math.abs(shown[i + 2] - whole[i + 2]) > tol) differ += 1;
+  }
+  return { differ, pixels: shown.length / 4 };
 };
 hook.cutAt = () => cutPlane.constant;
 hook.showTop = () => { setCamera('top'); fitTop(); };
@@ -963,9 +984,10 @@ hook.coverage = () => {
 // ---------------------------------------------------------------- the still picture
 // Under software WebGL the scene without the robots is drawn once into `still` (colour and
 // depth) and kept while the camera, the cut, the colours and the building stay; a frame where
-// only robots moved copies it back (one full-screen triangle pair writing colour and depth)
-// and draws the robots and their rays over it, so moving robots cost what they draw, not
-// what the building does.
+// only robots moved copies it back (a quad writing colour and depth) and draws the robots and
+// their rays over it, both only within the rectangle where the robots were and are (the
+// canvas keeps its other pixels: preserveDrawingBuffer), so moving robots cost what they draw
+// and the few pixels around them, not what the building does.
 let still = null;
 const quadCamera = new THREE.OrthographicCamera(-1, 1, 1, -1, 0, 1);
 const quadScene = new THREE.Scene();
@@ -983,7 +1005,35 @@ const quad = new THREE.Mesh(new THREE.PlaneGeometry(2, 2), new THREE.ShaderMater
 quad.frustumCulled = false;
 quadScene.add(quad);
 const drawingSize = new THREE.Vector2();
-const costs = { calls: 0, triangles: 0, frameCalls: 0 };
+const costs = { calls: 0, triangles: 0, frameCalls: 0, pixels: 0 };
+let moverRectBefore = null; // where the robots were drawn last frame: [x0, y0, x1, y1], or null
+
+// The drawing-buffer rectangle (origin bottom left) holding the robots and their rays as the
+// camera sees them; null when one is behind the camera (then the whole view).
+const rectBox = new THREE.Box3();
+const rectPoint = new THREE.Vector3();
+function moverRect() {
+  rectBox.makeEmpty();
+  for (const r of [...liveRobots, ...playRobots]) {
+    if (!r.group.visible) continue;
+    rectBox.expandByObject(r.group);
+    const p = r.lines.geometry.attributes.position;
+    for (let i = 0; i < r.lines.geometry.drawRange.count && i < p.count; i += 1) rectBox.expandByPoint(rectPoint.fromBufferAttribute(p, i));
+  }
+  if (rectBox.isEmpty()) return [0, 0, 0, 0];
+  let [x0, y0, x1, y1] = [Infinity, Infinity, -Infinity, -Infinity];
+  for (let k = 0; k < 8; k += 1) {
+    rectPoint.set(k & 1 ? rectBox.max.x : rectBox.min.x, k & 2 ? rectBox.max.y : rectBox.min.y, k & 4 ? rectBox.max.z : rectBox.min.z);
+    rectPoint.project(camera);
+    if (!(rectPoint.z >= -1 && rectPoint.z <= 1)) return null;
+    const x = ((rectPoint.x + 1) / 2) * drawingSize.x;
+    const y = ((rectPoint.y + 1) / 2) * drawingSize.y;
+    x0 = Math.min(x0, x); y0 = Math.min(y0, y); x1 = Math.max(x1, x); y1 = Math.max(y1, y);
+  }
+  const clamp = (v, hi) => Math.max(0, Math.min(hi, v));
+  return [clamp(Math.floor(x0) - 3, drawingSize.x), clamp(Math.floor(y0) - 3, drawingSize.y),
+    clamp(Math.ceil(x1) + 3, drawingSize.x), clamp(Math.ceil(y1) + 3, drawingSize.y)];
+}
 
 function movers() {
   return [...liveRobots, ...playRobots].flatMap((r) => [r.group, r.lines]);
@@ -1012,8 +1062,20 @@ function drawStill() {
     costs.calls = renderer.info.render.calls;
     costs.triangles = renderer.info.render.triangles;
     stale = false;
+    moverRectBefore = null;
   }
-  // The still picture, then the robots alone over it.
+  // The still picture, then the robots alone over it, where they were and are.
+  const now = moverRect();
+  const before = moverRectBefore;
+  moverRectBefore = now;
+  const rect = now && before
+    ? [Math.min(now[0], before[0]), Math.min(now[1], before[1]), Math.max(now[2], before[2]), Math.max(now[3], before[3])]
+    : [0, 0, drawingSize.x, drawingSize.y];
+  costs.pixels = Math.max(0, rect[2] - rect[0]) * Math.max(0, rect[3] - rect[1]);
+  if (costs.pixels === 0) return;
+  const ratio = renderer.getPixelRatio();
+  renderer.setScissor(rect[0] / ratio, rect[1] / ratio, (rect[2] - rect[0]) / ratio, (rect[3] - rect[1]) / ratio);
+  renderer.setScissorTest(true);
   const shown = new Set(movers());
   const hidden = scene.children.filter((o) => !o.isLight && !shown.has(o)).map((o) => [o, o.visible]);
   const background = scene.background;
@@ -1026,6 +1088,7 @@ function drawStill() {
   scene.background = background;
   for (const [o, v] of hidden) o.visible = v;
   renderer.autoClear = true;
+  renderer.setScissorTest(false);
 }
 
 function draw() {

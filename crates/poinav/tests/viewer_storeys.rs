@@ -4,10 +4,10 @@
 //! storeys above are cut away), switching the storey moves the robots and the section plane,
 //! ArrowUp drives Robot1 at least 1 m in 2.5 s without touching Robot2, the building arrives one
 //! GLB per storey with the simulated storey's first, is drawn in few draw calls, is not redrawn
-//! while nothing moves, and X-ray leaves the storey cut. Prints the first-frame time, the
-//! simulated storey's and the building's load times, the frame rate while Robot1 drives, the
-//! time one frame takes (everything, and only the robots moved) and the load average per model.
-//! Needs node,
+//! while nothing moves, frames where only robots moved show what a whole drawing shows, and
+//! X-ray leaves the storey cut. Prints the first-frame time, the simulated storey's and the
+//! building's load times, the frame rate while Robot1 drives, the time one frame takes
+//! (everything, and only the robots moved) and the load average per model. Needs node,
 //! tests/js/node_modules and /usr/bin/chromium (tests/js/setup.sh installs them).
 
 mod common;
@@ -38,7 +38,7 @@ fn viewer_on(model: &str) {
     );
     assert!(ok, "{report:#}");
     let checks = report["checks"].as_object().unwrap();
-    assert_eq!(checks.len(), 11, "{report:#}");
+    assert_eq!(checks.len(), 12, "{report:#}");
     assert!(checks.values().all(|c| c["ok"] == true));
     let m = |check: &str, key: &str| report["checks"][check]["measured"][key].clone();
     assert!(m("rays visible from above", "ray_pixels").as_u64().unwrap() > 50);
