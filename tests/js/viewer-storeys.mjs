@@ -82,7 +82,6 @@ try {
   report.draw_calls = cost.calls;
   report.triangles = cost.triangles;
   check('few draw calls', cost.calls <= 40 + 2 * scene.model.length, cost);
-  report.render_ms_top = await hook(() => window.poinav.renderTime(10));
 
   // Nothing moves: nothing is redrawn.
   const idle0 = await hook(() => window.poinav.frames);
@@ -133,8 +132,8 @@ try {
   report.frames_per_s = (f1.frames - f0.frames) / ((f1.ms - f0.ms) / 1000);
   report.moving_s = (f1.ms - f0.ms) / 1000;
   await hook(() => window.poinav.showTop());
-  report.render_ms = await hook(() => window.poinav.renderTime(10));
-  report.robots_ms = await hook(() => window.poinav.renderTime(10, false));
+  report.render_ms = await hook(() => window.poinav.renderTime(5));
+  report.robots_ms = await hook(() => window.poinav.renderTime(5, false));
 
   // Switching the storey moves the robots and the section plane there.
   const target = storeys.find((s) => s.i !== current && s.robots > 0);

@@ -370,8 +370,12 @@ async function loadBuilding(info) {
     building.addPart(gltf.scene, part.k);
     hook.parts.push(part.k);
     hook.elements = elementsById.size;
-    applyColours();
-    applyCut();
+    // The simulated storey's part is drawn at once, the others together when the last has
+    // arrived: drawing the whole view again after each would take longer than loading them.
+    if (n === 0 || n === parts.length - 1) {
+      applyColours();
+      applyCut();
+    }
     if (n === 0) hook.storeyMs = performance.now() - t0;
   }
   const box = new THREE.Box3();
