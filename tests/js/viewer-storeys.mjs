@@ -6,11 +6,15 @@
 // storey). Checks that from straight above the robots' rays and the doors' status colours are
 // visible on the simulated storey (nothing above it hides them), that switching the storey
 // moves the robots and the section plane there, and that ArrowUp drives Robot1 at least 1 m in
-// 2.5 s without touching Robot2. Measures the first frame, the building's load time and the
-// frame rate. Writes OUT_DIR/report.json and OUT_DIR/top.png; exits 1 when a check fails.
+// 2.5 s without touching Robot2; that the building arrives in parts, the simulated storey's
+// first, merged into few draw calls; that nothing is redrawn while nothing moves; and that the
+// X-ray view keeps the storey cut (only what is above the cut turns translucent). Measures the
+// first frame, the simulated storey's and the whole building's load times, the frame rate
+// while Robot1 drives, the time one frame takes and the load average. Writes
+// OUT_DIR/report.json and OUT_DIR/top.png; exits 1 when a check fails.
 // crates/poinav/tests/viewer_storeys.rs runs it on the corpus's multi-storey models.
 import { mkdtempSync, writeFileSync, mkdirSync } from 'node:fs';
-import { tmpdir } from 'node:os';
+import { loadavg, tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { chromium } from 'playwright-core';
 
@@ -46,12 +50,22 @@ try {
 
   await page.goto(url);
   await page.waitForFunction(() => window.poinav && window.poinav.ready && window.poinav.states > 10, null, { timeout: 120000 });
-  const times = await hook(() => ({ first_frame_ms: window.poinav.firstFrameMs, building_ms: window.poinav.buildingMs, building_frame_ms: window.poinav.buildingFrameMs }));
+  const times = await hook(() => ({
+    first_frame_ms: window.poinav.firstFrameMs, storey_ms: window.poinav.storeyMs, storey_frame_ms: window.poinav.storeyFrameMs,
+    building_ms: window.poinav.buildingMs, building_frame_ms: window.poinav.buildingFrameMs,
+  }));
   const scene = await hook(() => window.poinav.scene);
   const current = scene.current;
   const storeys = scene.storeys.map((s, i) => ({ i, name: s.storey, elevation_m: s.elevation_m, robots: s.robots.length, doors: s.doors.length }));
   check('scene lists the storeys', storeys.length >= 2 && storeys[current].robots === 2, { current, storeys });
   check('first frame drawn', times.first_frame_ms !== null && times.building_ms !== null, times);
+  // The building arrives in parts (one per storey), the simulated storey's first; every
+  // element of every part is there, merged into few draw calls.
+  const parts = await hook(() => window.poinav.parts);
+  const elements = await hook(() => window.poinav.elements);
+  const wanted = scene.model.reduce((n, p) => n + p.elements, 0);
+  check('simulated storey loads first', parts.length === scene.model.length && scene.model[parts[0]].storey === current && elements === wanted,
+    { parts, storeys: parts.map((k) => scene.model[k].storey), elements, wanted });
 
   // Top-down view of the cut storey: rays and door passages are visible.
   await hook(() => window.poinav.showTop());
@@ -64,6 +78,30 @@ try {
   const rayPixels = counts.slice(0, 3).reduce((a, b) => a + b, 0);
   const doorPixels = Object.fromEntries(statuses.map((s, k) => [s, counts[3 + k]]));
   check('rays visible from above', rayPixels > 50, { ray_pixels: rayPixels, cut_at: await hook(() => window.poinav.cutAt()) });
+  const cost = await hook(() => window.poinav.renderInfo());
+  report.draw_calls = cost.calls;
+  report.triangles = cost.triangles;
+  check('few draw calls', cost.calls <= 40 + 2 * scene.model.length, cost);
+
+  // Nothing moves: nothing is redrawn.
+  const idle0 = await hook(() => window.poinav.frames);
+  await pause(1500);
+  const idle1 = await hook(() => window.poinav.frames);
+  check('no frames while nothing moves', idle1 === idle0, { frames: idle1 - idle0 });
+
+  // X-ray: what is above the cut turns translucent; the storey stays cut and opaque (the same
+  // triangles drawn opaque, under the same plane), and the robots' rays still show (tinted by
+  // the translucent storeys above, so counted with a wider tolerance).
+  await page.check('#xray');
+  await pause(800);
+  const xrayRays = (await hook(([c, tol]) => window.poinav.countColours(c, tol), [rayColours, 120])).reduce((a, b) => a + b, 0);
+  const xrayCost = await hook(() => window.poinav.renderInfo());
+  const xrayCut = await hook(() => window.poinav.cutAt());
+  await page.uncheck('#xray');
+  await pause(300);
+  check('X-ray keeps the storey cut', xrayRays > 50 && xrayCost.building.solid === cost.building.solid && cost.building.xray === 0
+    && xrayCost.building.xray > 0 && Math.abs(xrayCut - (st.elevation_m + 1.5)) < 1e-6,
+    { ray_pixels: xrayRays, opaque_triangles: [cost.building.solid, xrayCost.building.solid], translucent_triangles: [cost.building.xray, xrayCost.building.xray], cut_at: xrayCut });
   // Every door of the storey is drawn in its status colour; together they cover > 50 pixels.
   const doors = await hook(() => window.poinav.doors());
   const wrong = doors.filter((d) => d.colour !== STATUS[d.status]);
@@ -71,13 +109,16 @@ try {
   check('door colours visible from above', doors.length > 0 && wrong.length === 0 && total > 50, { door_pixels: doorPixels, doors: doors.length, wrong });
 
   // ArrowUp for 2.5 s: Robot1 moves at least 1 m, Robot2 stays and is not touched.
-  const f0 = await hook(() => [window.poinav.frames, performance.now()]);
+  const f0 = await hook(() => ({ ...window.poinav.motion }));
   const before = await robots();
   await page.keyboard.down('ArrowUp');
   await pause(2500);
   await page.keyboard.up('ArrowUp');
   await pause(400);
-  const f1 = await hook(() => [window.poinav.frames, performance.now()]);
+  const f1 = await hook(() => ({ ...window.poinav.motion }));
+  // What the robots' frames showed (under software WebGL: the kept picture with the robots
+  // drawn over it) is what drawing the whole view shows.
+  const still = await hook(() => window.poinav.stillDiff());
   const after = await robots();
   const moved = Math.hypot(after[0].x - before[0].x, after[0].y - before[0].y);
   const other = Math.hypot(after[1].x - before[1].x, after[1].y - before[1].y);
@@ -85,7 +126,14 @@ try {
   const contacts = await page.$$eval('#events li', (lis) => lis.map((li) => li.textContent).filter((t) => t.includes('contact with Robot')));
   check('ArrowUp drives Robot1 without touching Robot2', moved >= 1 && other < 1e-6 && contacts.length === 0 && apart > 0.8,
     { moved_m: moved, robot2_moved_m: other, apart_m: apart, contacts });
-  report.frames_per_s = (f1[0] - f0[0]) / ((f1[1] - f0[1]) / 1000);
+  check('robots drawn over the kept picture as in a whole drawing', still.differ <= still.pixels * 0.001, still);
+  // Frames drawn while the robots moved, per second they moved (a robot at a wall stops, and
+  // nothing is drawn then).
+  report.frames_per_s = (f1.frames - f0.frames) / ((f1.ms - f0.ms) / 1000);
+  report.moving_s = (f1.ms - f0.ms) / 1000;
+  await hook(() => window.poinav.showTop());
+  report.render_ms = await hook(() => window.poinav.renderTime(5));
+  report.robots_ms = await hook(() => window.poinav.renderTime(5, false));
 
   // Switching the storey moves the robots and the section plane there.
   const target = storeys.find((s) => s.i !== current && s.robots > 0);
@@ -107,6 +155,7 @@ try {
   const errors = consoleErrors.concat(await hook(() => window.poinav.errors));
   check('no console errors', errors.length === 0, errors);
   Object.assign(report, times);
+  report.load_average = loadavg();
 } catch (err) {
   failures.push(`exception: ${err.stack || err}`);
 } finally {

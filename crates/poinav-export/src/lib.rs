@@ -1,9 +1,11 @@
 //! Exporters that read poinav's results: the semantic CSV of an enrichment and its IDS,
-//! 3D exports of element meshes as binary glTF ([`glb`]) and binary FBX 7.4 ([`fbx`]), and
-//! storey floor plans as SVG drawings ([`plan_svg`]).
+//! 3D exports of element meshes as binary glTF ([`glb`], or one GLB per storey:
+//! [`glb_chunks`]) and binary FBX 7.4 ([`fbx`]), and storey floor plans as SVG drawings
+//! ([`plan_svg`]).
 
 pub mod fbx;
 pub mod glb;
+pub mod glb_chunks;
 pub mod ids;
 pub mod instances;
 pub mod palette;

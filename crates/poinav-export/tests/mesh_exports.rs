@@ -5,7 +5,9 @@
 //! warnings) and the FBX through assimp (`assimp info`: one mesh per element with triangles,
 //! node names carrying the GlobalIds, the structure and bounds assimp reads from the plain GLB),
 //! and both are read back to check hierarchy, metadata, the Y-up frame and the geometry (the
-//! default GLB's shared, quantised meshes decoded and placed as a glTF reader does). Missing tools fail the test, naming the install command
+//! default GLB's shared, quantised meshes decoded and placed as a glTF reader does); the GLB
+//! split per storey passes the validator part by part and places every element as the whole
+//! GLB does. Missing tools fail the test, naming the install command
 //! (`bash tests/js/setup.sh`).
 
 mod common;
@@ -16,7 +18,7 @@ use std::process::Command;
 use glam::DVec3;
 use poinav_export::glb::GlbOptions;
 use poinav_export::scene::{z_up_to_y_up, NO_STOREY};
-use poinav_export::{fbx, glb, SceneInput};
+use poinav_export::{fbx, glb, glb_chunks, SceneInput};
 use poinav_geom::{ElementMesh, Mesh};
 use poinav_ifc::spatial::Storey;
 use poinav_ifc::EntityId;
@@ -557,6 +559,95 @@ fn glb_edge_cases_pass_the_validator() {
 
 /// A chair's mesh (an irregular solid: a box with one corner raised) moved by `t` after `m`,
 /// keeping the vertex order, as the mesh of a mapped item placed again is.
+/// Every element node of a GLB: (GlobalId, world vertices) under its group node.
+fn element_vertices(bytes: &[u8]) -> Vec<(String, Vec<DVec3>)> {
+    let json = glb_json(bytes);
+    let nodes = json["nodes"].as_array().unwrap();
+    let mut out = Vec::new();
+    for r in json["scenes"][0]["nodes"].as_array().unwrap() {
+        let g = &nodes[r.as_u64().unwrap() as usize];
+        for c in g["children"].as_array().into_iter().flatten() {
+            let n = &nodes[c.as_u64().unwrap() as usize];
+            let id = n["extras"]["GlobalId"].as_str().unwrap().to_string();
+            let ps = if n.get("mesh").is_some() {
+                world_vertices(bytes, &json, g, n).0
+            } else {
+                Vec::new()
+            };
+            out.push((id, ps));
+        }
+    }
+    out
+}
+
+#[test]
+fn glb_per_storey_parts_pass_the_validator_and_hold_every_element_once() {
+    let b = building();
+    let mut elements = b.elements.clone();
+    let parts =
+        glb_chunks::to_glb_per_storey(&b.storeys, &mut elements, Some(&b.poi), GlbOptions::COMPACT);
+    // Ground floor: wall, slab, survey column; first floor: door, window, the element
+    // without geometry; then the chair without a storey.
+    let storeys: Vec<(Option<usize>, usize)> =
+        parts.iter().map(|p| (p.storey, p.elements)).collect();
+    assert_eq!(storeys, [(Some(0), 3), (Some(1), 3), (None, 1)]);
+    let again = glb_chunks::to_glb_per_storey(
+        &b.storeys,
+        &mut b.elements.clone(),
+        Some(&b.poi),
+        GlbOptions::COMPACT,
+    );
+    assert_eq!(parts, again, "deterministic");
+
+    let dir = tmp();
+    let files: Vec<PathBuf> = parts
+        .iter()
+        .enumerate()
+        .map(|(k, p)| {
+            let f = dir.path().join(format!("{k}.glb"));
+            std::fs::write(&f, &p.glb).unwrap();
+            f
+        })
+        .collect();
+    let reports = gltf_validator(&files.iter().map(PathBuf::as_path).collect::<Vec<_>>());
+    assert_eq!(reports.len(), 3);
+    for (r, want) in reports
+        .iter()
+        .zip(["Ground floor", "First floor", NO_STOREY])
+    {
+        let issues = &r["issues"];
+        assert_eq!(issues["numErrors"], 0, "{want}: {:#}", issues["messages"]);
+        assert_eq!(issues["numWarnings"], 0, "{want}: {:#}", issues["messages"]);
+    }
+    for (p, want) in parts.iter().zip(["Ground floor", "First floor", NO_STOREY]) {
+        let json = glb_json(&p.glb);
+        let roots = json["scenes"][0]["nodes"].as_array().unwrap();
+        assert_eq!(roots.len(), 1);
+        assert_eq!(
+            json["nodes"][roots[0].as_u64().unwrap() as usize]["name"],
+            want
+        );
+    }
+
+    // Together the parts hold exactly the whole GLB's elements, each where the whole puts it.
+    let mut whole = element_vertices(&glb::to_glb(&scene(&b)));
+    let mut split: Vec<_> = parts
+        .iter()
+        .flat_map(|p| element_vertices(&p.glb))
+        .collect();
+    whole.sort_by(|a, b| a.0.cmp(&b.0));
+    split.sort_by(|a, b| a.0.cmp(&b.0));
+    assert_eq!(whole.len(), b.elements.len());
+    assert_eq!(split.len(), whole.len());
+    for ((id, w), (sid, s)) in whole.iter().zip(&split) {
+        assert_eq!(id, sid);
+        assert_eq!(w.len(), s.len(), "{id}");
+        for (a, c) in w.iter().zip(s) {
+            assert!(a.distance(*c) < 1e-3, "{id}: {a} vs {c}");
+        }
+    }
+}
+
 fn chair(m: glam::DMat3, t: DVec3) -> Mesh {
     let mut mesh = cuboid(v(0.0, 0.0, 0.0), v(0.5, 0.45, 0.9));
     mesh.positions[7].z += 0.2;

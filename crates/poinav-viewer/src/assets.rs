@@ -32,6 +32,7 @@ macro_rules! asset {
 pub const ASSETS: &[Asset] = &[
     asset!("/", "index.html", HTML),
     asset!("/viewer.js", "viewer.js", JS),
+    asset!("/building.js", "building.js", JS),
     asset!("/viewer.css", "viewer.css", CSS),
     asset!("/vendor/three/LICENSE", "vendor/three/LICENSE", TEXT),
     asset!(

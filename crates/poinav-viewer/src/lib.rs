@@ -2,7 +2,7 @@
 //! that runs the robot simulation live and serves a single-page three.js viewer of the building.
 //!
 //! The server owns no IFC knowledge: the caller (the `poinav serve` command) hands it a
-//! [`Viewer`]: the building as GLB bytes, one [`ElementInfo`] per element for click-to-inspect,
+//! [`Viewer`]: the building as one GLB per storey, one [`ElementInfo`] per element for click-to-inspect,
 //! every storey as a plain [`poinav_nav::Floor`] with the robots that drive on it, and the storey
 //! shown first; a page can switch the simulated storey. The simulation runs on its own thread at the fixed step of [`poinav_sim::DT`], paced to real time; every step's
 //! state (poses, the five rays with what they hit, roles, brush) and the POI events it caused
@@ -34,4 +34,4 @@ pub use live::Live;
 pub use placement::default_robots;
 pub use protocol::ClientMessage;
 pub use server::{bind, Bound};
-pub use state::{ElementInfo, ViewStorey, Viewer};
+pub use state::{ElementInfo, ModelChunk, ViewStorey, Viewer};

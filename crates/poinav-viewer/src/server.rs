@@ -1,4 +1,5 @@
-//! The HTTP and WebSocket server: the embedded page and scripts, the building as GLB, the
+//! The HTTP and WebSocket server: the embedded page and scripts, the building as one GLB per
+//! storey (`/api/model/<k>.glb`, listed in the scene's `model`), the
 //! scene description, click-to-inspect data, and `/ws`, where pages receive every simulation
 //! step and send key presses. Limits (clients, message size and rate, malformed messages) act
 //! on the offending connection only; the simulation and the other pages go on.
@@ -37,7 +38,7 @@ const CLOSE_POLICY: u16 = 1008;
 struct App {
     config: ServerConfig,
     scene: String,
-    glb: Bytes,
+    model: Vec<Bytes>,
     elements: BTreeMap<String, String>,
     live: Live,
     clients: AtomicUsize,
@@ -148,9 +149,25 @@ fn storey_json(s: &ViewStorey) -> serde_json::Value {
 }
 
 /// The scene: every storey ([`storey_json`]) and, at the top level, the one shown first (its
-/// fields copied), with the title, the fixed step and the server's limits.
+/// fields copied), with the title, the fixed step, the server's limits and the building's
+/// parts (`model`: URL, storey index or null, name, elevation, elements and bytes of each).
 fn scene_json(v: &Viewer, config: &ServerConfig) -> String {
     let storeys: Vec<_> = v.storeys.iter().map(storey_json).collect();
+    let model: Vec<_> = v
+        .model
+        .iter()
+        .enumerate()
+        .map(|(k, c)| {
+            json!({
+                "url": format!("/api/model/{k}.glb"),
+                "storey": c.storey,
+                "name": c.name,
+                "elevation_m": c.elevation_m,
+                "elements": c.elements,
+                "bytes": c.glb.len(),
+            })
+        })
+        .collect();
     let mut scene = storeys.get(v.current).cloned().unwrap_or_else(|| json!({}));
     if let Some(o) = scene.as_object_mut() {
         o.insert("title".into(), json!(v.title));
@@ -158,6 +175,7 @@ fn scene_json(v: &Viewer, config: &ServerConfig) -> String {
         o.insert("dt".into(), json!(v.options.dt));
         o.insert("current".into(), json!(v.current));
         o.insert("storeys".into(), json!(storeys));
+        o.insert("model".into(), json!(model));
         o.insert(
             "limits".into(),
             json!({
@@ -201,7 +219,11 @@ pub async fn bind(config: ServerConfig, viewer: Viewer) -> Result<Bound, ViewerE
         app: Arc::new(App {
             config,
             scene,
-            glb: Bytes::from(viewer.glb),
+            model: viewer
+                .model
+                .into_iter()
+                .map(|c| Bytes::from(c.glb))
+                .collect(),
             elements,
             live,
             clients: AtomicUsize::new(0),
@@ -232,7 +254,7 @@ impl Bound {
         shutdown: impl Future<Output = ()> + Send + 'static,
     ) -> Result<(), ViewerError> {
         let router = Router::new()
-            .route("/api/model.glb", get(model))
+            .route("/api/model/{file}", get(model))
             .route("/api/scene", get(scene))
             .route("/api/element/{guid}", get(element))
             .route("/ws", get(ws))
@@ -272,13 +294,18 @@ async fn static_asset(method: Method, uri: Uri) -> Response {
     }
 }
 
-async fn model(State(app): State<Arc<App>>) -> Response {
-    (
-        StatusCode::OK,
-        headers("model/gltf-binary"),
-        app.glb.clone(),
-    )
-        .into_response()
+/// `/api/model/<k>.glb`: the building's part `k` (decimal, no sign or leading zeros).
+async fn model(State(app): State<Arc<App>>, Path(file): Path<String>) -> Response {
+    let part = file
+        .strip_suffix(".glb")
+        .filter(|k| !k.is_empty() && k.bytes().all(|b| b.is_ascii_digit()))
+        .filter(|k| *k == "0" || !k.starts_with('0'))
+        .and_then(|k| k.parse::<usize>().ok())
+        .and_then(|k| app.model.get(k));
+    match part {
+        Some(glb) => (StatusCode::OK, headers("model/gltf-binary"), glb.clone()).into_response(),
+        None => not_found(),
+    }
 }
 
 async fn scene(State(app): State<Arc<App>>) -> Response {

@@ -1,4 +1,4 @@
-//! What the viewer shows: the building (GLB), what a click on an element reveals, every storey
+//! What the viewer shows: the building (one GLB per storey), what a click on an element reveals, every storey
 //! as a floor with the robots that drive on it, and which storey is shown first.
 
 use std::collections::BTreeMap;
@@ -35,9 +35,10 @@ pub struct ElementInfo {
 pub struct Viewer {
     /// Page title (the file name).
     pub title: String,
-    /// The building, binary glTF (`poinav_export::glb::to_glb`: Y up, one node per element with
-    /// `extras` carrying GlobalId, class and POI data).
-    pub glb: Vec<u8>,
+    /// The building, one binary glTF per storey (`poinav_export::glb_chunks`: Y up, one node
+    /// per element with `extras` carrying GlobalId, class and POI data), served in this order
+    /// at `/api/model/<k>.glb`.
+    pub model: Vec<ModelChunk>,
     /// Click-to-inspect data by GlobalId.
     pub elements: BTreeMap<String, ElementInfo>,
     /// Every storey a page can switch to, lowest first.
@@ -48,6 +49,21 @@ pub struct Viewer {
     pub options: SimOptions,
     /// Where the robots came from, in words (shown on the page).
     pub source: String,
+}
+
+/// One part of the building: the elements of one storey (or those without a storey) as a GLB.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ModelChunk {
+    /// The index in [`Viewer::storeys`] of the storey it belongs to, when that storey is one.
+    pub storey: Option<usize>,
+    /// The storey's name (`No storey` for the elements without one).
+    pub name: String,
+    /// The storey's elevation, metres (0 without a storey).
+    pub elevation_m: f64,
+    /// Element nodes in it.
+    pub elements: usize,
+    /// The GLB bytes.
+    pub glb: Vec<u8>,
 }
 
 /// One storey of the viewer: its floor and the robots that drive on it when it is chosen.

@@ -11,7 +11,7 @@ use glam::DVec2;
 use poinav_nav::{Floor, FloorObstacle, FloorZone, ObstacleKind};
 use poinav_poi::{RobotProfile, Role};
 use poinav_sim::SimOptions;
-use poinav_viewer::{ServerConfig, ViewStorey, Viewer};
+use poinav_viewer::{ModelChunk, ServerConfig, ViewStorey, Viewer};
 use serde_json::Value;
 use tokio::io::{AsyncReadExt, AsyncWriteExt};
 use tokio::net::TcpStream;
@@ -105,7 +105,22 @@ async fn serve(
 ) -> (SocketAddr, tokio::sync::oneshot::Sender<()>) {
     let viewer = Viewer {
         title: "test".into(),
-        glb: b"glTF-test".to_vec(),
+        model: vec![
+            ModelChunk {
+                storey: Some(0),
+                name: "ground".into(),
+                elevation_m: 0.0,
+                elements: 1,
+                glb: b"glTF-ground".to_vec(),
+            },
+            ModelChunk {
+                storey: None,
+                name: "No storey".into(),
+                elevation_m: 0.0,
+                elements: 2,
+                glb: b"glTF-loose".to_vec(),
+            },
+        ],
         elements: BTreeMap::new(),
         storeys,
         current: 0,
@@ -220,8 +235,22 @@ async fn serves_only_its_assets_and_refuses_paths_outside_them() {
     let (status, body) = raw_get(addr, "GET", "/vendor/three/three.module.js").await;
     assert_eq!(status, 200);
     assert!(body.contains("three.core.js"));
-    let (status, body) = raw_get(addr, "GET", "/api/model.glb").await;
-    assert_eq!((status, body.as_str()), (200, "glTF-test"));
+    let (status, body) = raw_get(addr, "GET", "/api/model/0.glb").await;
+    assert_eq!((status, body.as_str()), (200, "glTF-ground"));
+    let (status, body) = raw_get(addr, "GET", "/api/model/1.glb").await;
+    assert_eq!((status, body.as_str()), (200, "glTF-loose"));
+    for part in [
+        "2.glb",
+        "01.glb",
+        "+1.glb",
+        "1",
+        ".glb",
+        "1.glb.glb",
+        "-0.glb",
+    ] {
+        let (status, _) = raw_get(addr, "GET", &format!("/api/model/{part}")).await;
+        assert_eq!(status, 404, "/api/model/{part}");
+    }
     for path in [
         "/../Cargo.toml",
         "/../../../../../../etc/passwd",
@@ -485,6 +514,14 @@ async fn a_page_moves_the_robots_to_another_storey() {
     assert_eq!(storeys[1]["structure"].as_array().unwrap().len(), 4);
     assert_eq!(storeys[2]["robots"].as_array().unwrap().len(), 0);
     assert_eq!(storeys[2]["unplaced"], "it has no spaces (IfcSpace)");
+    // The building's parts: where each is served, its storey and size.
+    assert_eq!(
+        scene["model"],
+        serde_json::json!([
+            {"url": "/api/model/0.glb", "storey": 0, "name": "ground", "elevation_m": 0.0, "elements": 1, "bytes": 11},
+            {"url": "/api/model/1.glb", "storey": null, "name": "No storey", "elevation_m": 0.0, "elements": 2, "bytes": 10},
+        ])
+    );
     let start = &storeys[1]["robots"][0]["start"];
     let mut page = ws(addr).await;
     assert_eq!(latest_state(&mut page).await["storey"], 0);

@@ -1,4 +1,5 @@
-// poinav viewer: the building (GLB from /api/model.glb) and the live robots (states over /ws).
+// poinav viewer: the building (one GLB per storey, listed in the scene's `model`, the simulated
+// storey's first) and the live robots (states over /ws).
 //
 // Server messages (JSON text):
 //   {"type":"events","events":[...]}  recent POI events, sent once on connect
@@ -14,11 +15,14 @@
 // rays and the doors' colours are visible from above; switching storey is the server's
 // decision (every page follows the state's `storey`).
 // Coordinates: plan (x, y) on the storey at elevation e is three.js (x, e + h, -y), as in the GLB.
+// Frames are drawn only when something changed (a robot moved, the camera, the cut, colours):
+// software WebGL has no time to spare. The building is a few merged meshes (building.js).
 
 import * as THREE from 'three';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { VRButton } from 'three/addons/webxr/VRButton.js';
+import { Building, firstAtLeast } from './building.js';
 
 const BACKGROUND = 0xf1f5f9;
 const $ = (id) => document.getElementById(id);
@@ -60,18 +64,43 @@ const hook = {
   firstFrameMs: null,
   buildingMs: null,
   buildingFrameMs: null,
+  storeyMs: null,
+  storeyFrameMs: null,
+  frames: 0,
+  stillDraws: 0, // times the still picture was drawn
+  motion: { frames: 0, ms: 0 }, // frames drawn while robots moved, and for how long they moved
+  parts: [], // indices (in the scene's `model`) of the building's parts loaded, in order
 };
 window.poinav = hook;
 window.addEventListener('error', (e) => hook.errors.push(String(e.message)));
 
 // ---------------------------------------------------------------- renderer, cameras, lights
 const view = $('view');
-const renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
-renderer.setPixelRatio(window.devicePixelRatio);
+// Software WebGL (SwiftShader, llvmpipe) pays for every sample: no antialiasing there.
+function softwareGl() {
+  const gl = document.createElement('canvas').getContext('webgl2');
+  const info = gl?.getExtension('WEBGL_debug_renderer_info');
+  const name = info ? gl.getParameter(info.UNMASKED_RENDERER_WEBGL) : gl?.getParameter(gl.RENDERER);
+  gl?.getExtension('WEBGL_lose_context')?.loseContext();
+  return /swiftshader|llvmpipe|softpipe|software/i.test(String(name ?? ''));
+}
+hook.software = softwareGl();
+const renderer = new THREE.WebGLRenderer({ antialias: !hook.software, preserveDrawingBuffer: true });
+renderer.setPixelRatio(hook.software ? 1 : window.devicePixelRatio);
+renderer.localClippingEnabled = true;
 renderer.xr.enabled = true;
 view.appendChild(renderer.domElement);
-// The section plane: keeps what lies below elevation + cut (world y up); off in X-ray view.
+// The section plane: the building keeps what lies below elevation + cut (world y up); in
+// X-ray view what lies above it is drawn too, translucent (`abovePlane` keeps that part).
 const cutPlane = new THREE.Plane(new THREE.Vector3(0, -1, 0), 1.5);
+const abovePlane = new THREE.Plane(new THREE.Vector3(0, 1, 0), -1.5);
+const building = new Building(cutPlane, abovePlane);
+let dirty = true; // a frame is due
+let stale = true; // ... and the still picture (below) must be drawn again
+// Anything but the robots changed (camera, cut, colours, building, overlays).
+function redraw() { dirty = true; stale = true; }
+// Only robots or their rays moved.
+function moved() { dirty = true; }
 const vrButton = VRButton.createButton(renderer);
 vrButton.id = 'vr-button';
 view.appendChild(vrButton);
@@ -87,6 +116,7 @@ renderer.xr.addEventListener('sessionstart', () => {
 renderer.xr.addEventListener('sessionend', () => { scene.position.set(0, 0, 0); applyCut(); });
 
 const scene = new THREE.Scene();
+scene.add(building.group);
 scene.background = new THREE.Color(BACKGROUND);
 scene.add(new THREE.HemisphereLight(0xffffff, 0x94a3b8, 2.2));
 const sun = new THREE.DirectionalLight(0xffffff, 1.6);
@@ -102,6 +132,8 @@ const pan = new OrbitControls(top, renderer.domElement);
 pan.enableRotate = false;
 pan.enabled = false;
 pan.screenSpacePanning = true;
+orbit.addEventListener('change', redraw);
+pan.addEventListener('change', redraw);
 
 function resize() {
   const w = view.clientWidth || 1;
@@ -110,6 +142,7 @@ function resize() {
   perspective.aspect = w / h;
   perspective.updateProjectionMatrix();
   fitTop();
+  redraw();
 }
 window.addEventListener('resize', resize);
 
@@ -152,13 +185,12 @@ let cutHeight = 1.5; // section height above the storey's floor, metres
 let xray = false;
 function applyCut() {
   cutPlane.constant = elevation + cutHeight + scene.position.y;
-  renderer.clippingPlanes = xray ? [] : [cutPlane];
+  abovePlane.constant = -cutPlane.constant;
   capGroup.position.y = elevation + cutHeight - 0.01;
-  capGroup.visible = !xray;
-  // Elements wholly above the plane are not drawn at all: the plane would clip all of them,
-  // but software WebGL would still pay for their vertices.
-  const cutY = elevation + cutHeight;
-  for (const [object, bottom] of elementBottoms) object.visible = xray || bottom < cutY;
+  // Elements wholly above the plane are not drawn at all (unless in X-ray view): the plane
+  // would clip all of them, but software WebGL would still pay for their vertices.
+  building.setCut(elevation + cutHeight, xray);
+  redraw();
   $('cut-value').textContent = `${cutHeight.toFixed(1)} m`;
   hook.cut_m = cutHeight;
   hook.xray = xray;
@@ -169,21 +201,21 @@ function setCamera(which) {
   orbit.enabled = which !== 'top';
   pan.enabled = which === 'top';
   hook.camera = which;
+  redraw();
   $('camera').textContent = which === 'top' ? 'Camera: top-down' : 'Camera: perspective';
 }
 $('camera').addEventListener('click', () => setCamera(hook.camera === 'top' ? 'perspective' : 'top'));
 
 // ---------------------------------------------------------------- building
-const elementMeshes = []; // meshes that a click can hit, each with .userData.element
-const elementsById = new Map(); // GlobalId -> { object, meshes, originals }
+const elementsById = building.elements; // GlobalId -> element (building.js)
 let zoneGroup = new THREE.Group();
 scene.add(zoneGroup);
 let capGroup = new THREE.Group(); // flat caps where the section plane cuts walls and columns
 scene.add(capGroup);
 let doorGroup = new THREE.Group(); // door and doorway passages on the floor, coloured by status
 scene.add(doorGroup);
-const doorMeshes = new Map(); // door GlobalId -> mesh
-const elementBottoms = []; // [element node, lowest y of its meshes in the scene's frame]
+let caps = null; // the caps as one flat batch (flatBatch)
+let doors = null; // the door passages as one flat batch
 let poiView = false;
 
 function elementColour(data) {
@@ -195,38 +227,21 @@ function elementColour(data) {
   return NO_ROLE;
 }
 
-// A see-through copy of a material, for the X-ray view.
-const xrayMaterials = new WeakMap();
-function xrayOf(material) {
-  if (!xrayMaterials.has(material)) {
-    const m = material.clone();
-    m.transparent = true;
-    m.opacity = 0.18;
-    m.depthWrite = false;
-    xrayMaterials.set(material, m);
-  }
-  return xrayMaterials.get(material);
-}
-
+const poiColour = new THREE.Color();
 function applyColours() {
-  for (const { meshes, originals, object } of elementsById.values()) {
-    const colour = elementColour(object.userData);
-    meshes.forEach((m, i) => {
-      let solid = originals[i];
-      if (poiView) {
-        if (!m.userData.poiMaterial) m.userData.poiMaterial = new THREE.MeshLambertMaterial();
-        m.userData.poiMaterial.color.set(colour);
-        solid = m.userData.poiMaterial;
-      }
-      m.material = xray ? xrayOf(solid) : solid;
-    });
+  for (const el of elementsById.values()) {
+    building.setColour(el.id, poiView ? poiColour.set(elementColour(el.data)) : null);
   }
-  for (const [id, mesh] of doorMeshes) {
-    const status = elementsById.get(id)?.object.userData.AccessibilityStatus ?? mesh.userData.status;
-    mesh.material.color.set(STATUS_COLOURS[status] || NO_ROLE);
+  building.flush();
+  if (doors) {
+    for (const [id, item] of doors.items) {
+      const status = elementsById.get(id)?.data.AccessibilityStatus ?? item.status;
+      doors.setColour(id, STATUS_COLOURS[status] || NO_ROLE);
+    }
   }
   zoneGroup.visible = poiView;
   $('legend').hidden = !poiView;
+  redraw();
 }
 $('poi-colours').addEventListener('change', (e) => { poiView = e.target.checked; applyColours(); });
 
@@ -258,12 +273,53 @@ function addZones(info) {
   scene.add(zoneGroup);
 }
 
-function flat(ring, material, y) {
-  const geometry = new THREE.ShapeGeometry(new THREE.Shape(ring.map(([x, yy]) => new THREE.Vector2(x, yy))));
-  geometry.rotateX(-Math.PI / 2); // plan (x, y) -> (x, 0, -y)
-  const mesh = new THREE.Mesh(geometry, material);
-  mesh.position.y = y;
-  return mesh;
+// Flat outlines (plan rings) as one mesh with a colour per outline: `items` [{ id, ring,
+// colour, ... }]. Returns { mesh, items: id -> item, idAt(faceIndex), setColour(id, css) }.
+function flatBatch(items, name) {
+  const position = [];
+  const colour = [];
+  const index = [];
+  const ends = [];
+  const ids = [];
+  const byId = new Map();
+  const c = new THREE.Color();
+  for (const item of items) {
+    let contour = item.ring.map(([x, y]) => new THREE.Vector2(x, y));
+    if (THREE.ShapeUtils.isClockWise(contour)) contour = contour.reverse();
+    const triangles = THREE.ShapeUtils.triangulateShape(contour, []);
+    if (!triangles.length) continue;
+    const v0 = position.length / 3;
+    c.set(item.colour);
+    for (const p of contour) { position.push(p.x, 0, -p.y); colour.push(c.r, c.g, c.b); } // plan (x, y) -> (x, 0, -y)
+    for (const t of triangles) index.push(v0 + t[0], v0 + t[1], v0 + t[2]);
+    ends.push(index.length);
+    ids.push(item.id);
+    const list = byId.get(item.id) ?? [];
+    list.push([v0, v0 + contour.length]);
+    byId.set(item.id, list);
+    item.shown = item.colour;
+  }
+  const geometry = new THREE.BufferGeometry();
+  geometry.setAttribute('position', new THREE.Float32BufferAttribute(position, 3));
+  const colours = new THREE.Float32BufferAttribute(colour, 3);
+  geometry.setAttribute('color', colours);
+  geometry.setIndex(index);
+  const mesh = new THREE.Mesh(geometry, new THREE.MeshBasicMaterial({ vertexColors: true, side: THREE.DoubleSide }));
+  mesh.name = name;
+  const itemsById = new Map(items.map((i) => [i.id, i]));
+  return {
+    mesh,
+    items: itemsById,
+    idAt: (face) => ids[firstAtLeast(ends, 3 * face + 1)],
+    setColour(id, css) {
+      const item = itemsById.get(id);
+      if (!item || item.shown === css) return;
+      item.shown = css;
+      c.set(css);
+      for (const [a, b] of byId.get(id) ?? []) for (let v = a; v < b; v += 1) colours.setXYZ(v, c.r, c.g, c.b);
+      colours.needsUpdate = true;
+    },
+  };
 }
 
 // The storey's caps (walls and columns where the plane cuts them) and door passages.
@@ -273,64 +329,64 @@ function addOverlays(info) {
     g.traverse((o) => { if (o.isMesh) { o.geometry.dispose(); o.material.dispose?.(); } });
   }
   capGroup = new THREE.Group();
-  const cap = new THREE.MeshBasicMaterial({ color: 0x334155, side: THREE.DoubleSide });
-  for (const { id, ring } of info.structure || []) {
-    if (ring.length < 3) continue;
-    const mesh = flat(ring, cap, 0);
-    mesh.userData.element = id;
-    capGroup.add(mesh);
-  }
+  const rings = (info.structure || []).filter((r) => r.ring.length >= 3);
+  caps = flatBatch(rings.map(({ id, ring }) => ({ id, ring, colour: '#334155' })), 'caps');
+  capGroup.add(caps.mesh);
   doorGroup = new THREE.Group();
-  doorMeshes.clear();
-  for (const d of info.doors || []) {
-    if (!d.ring || d.ring.length < 3) continue;
-    const status = elementsById.get(d.id)?.object.userData.AccessibilityStatus ?? d.status;
-    const material = new THREE.MeshBasicMaterial({ color: STATUS_COLOURS[status] || NO_ROLE, side: THREE.DoubleSide });
-    const mesh = flat(d.ring, material, elevation + 0.03);
-    mesh.userData.element = d.id;
-    mesh.userData.status = d.status;
-    doorGroup.add(mesh);
-    doorMeshes.set(d.id, mesh);
-  }
+  const passages = (info.doors || []).filter((d) => d.ring && d.ring.length >= 3).map((d) => {
+    const status = elementsById.get(d.id)?.data.AccessibilityStatus ?? d.status;
+    return { id: d.id, ring: d.ring, status: d.status, colour: STATUS_COLOURS[status] || NO_ROLE };
+  });
+  doors = flatBatch(passages, 'doors');
+  doors.mesh.position.y = elevation + 0.03;
+  doorGroup.add(doors.mesh);
   scene.add(capGroup, doorGroup);
+  redraw();
 }
 
 function megabytes(n) { return (n / 1e6).toFixed(1); }
 
+// The building's parts (one GLB per storey): the simulated storey's first, then the elements
+// without a storey, then the other storeys nearest first. Each part is drawn once merged.
+function partOrder(info, current) {
+  const parts = (info.model || []).map((p, k) => ({ ...p, k }));
+  const elev = info.storeys?.[current]?.elevation_m ?? 0;
+  const rank = (p) => (p.storey === current ? -2 : p.storey === null ? -1 : Math.abs(p.elevation_m - elev));
+  return parts.sort((a, b) => rank(a) - rank(b) || a.k - b.k);
+}
+
 async function loadBuilding(info) {
   const t0 = performance.now();
-  let bytes = 0;
-  const gltf = await new GLTFLoader().loadAsync('/api/model.glb', (e) => {
-    bytes = e.loaded;
-    $('progress').textContent = e.total
-      ? `loading the building: ${megabytes(e.loaded)} of ${megabytes(e.total)} MB`
-      : `loading the building: ${megabytes(e.loaded)} MB`;
-  });
-  $('progress').textContent = 'preparing the building…';
-  scene.add(gltf.scene);
-  gltf.scene.traverse((o) => {
-    const d = o.userData || {};
-    if (!d.GlobalId || d.IfcClass === 'IfcBuildingStorey') return;
-    const meshes = [];
-    o.traverse((m) => { if (m.isMesh) meshes.push(m); });
-    meshes.forEach((m) => { m.userData.element = d.GlobalId; elementMeshes.push(m); });
-    elementsById.set(d.GlobalId, { object: o, meshes, originals: meshes.map((m) => m.material) });
-  });
-  hook.elements = elementsById.size;
-  for (const { object, meshes } of elementsById.values()) {
-    if (!meshes.length) continue;
-    const box = new THREE.Box3().setFromObject(object);
-    elementBottoms.push([object, box.min.y - scene.position.y]);
+  const parts = partOrder(info, storeyIndex ?? info.current ?? 0);
+  const total = parts.reduce((n, p) => n + p.bytes, 0);
+  let done = 0;
+  const loader = new GLTFLoader();
+  for (const [n, part] of parts.entries()) {
+    const what = parts.length > 1 ? `${part.name} (${n + 1} of ${parts.length})` : 'the building';
+    const gltf = await loader.loadAsync(part.url, (e) => {
+      $('progress').textContent = `loading ${what}: ${megabytes(done + e.loaded)} of ${megabytes(total)} MB`;
+    });
+    done += part.bytes;
+    building.addPart(gltf.scene, part.k);
+    hook.parts.push(part.k);
+    hook.elements = elementsById.size;
+    // The simulated storey's part is drawn at once, the others together when the last has
+    // arrived: drawing the whole view again after each would take longer than loading them.
+    if (n === 0 || n === parts.length - 1) {
+      applyColours();
+      applyCut();
+    }
+    if (n === 0) hook.storeyMs = performance.now() - t0;
   }
-  applyCut();
-  const box = new THREE.Box3().setFromObject(gltf.scene);
+  const box = new THREE.Box3();
+  for (const b of building.batches) box.union(b.mesh.geometry.boundingBox);
   if (!info.bounds && !box.isEmpty()) {
     bounds = { min: [box.min.x, -box.max.z], max: [box.max.x, -box.min.z] };
     fitTop();
     frameStorey();
   }
   hook.buildingMs = performance.now() - t0;
-  $('progress').textContent = `building: ${elementsById.size} elements, ${megabytes(bytes)} MB, loaded in ${(hook.buildingMs / 1000).toFixed(1)} s`;
+  $('progress').textContent = `building: ${elementsById.size} elements, ${megabytes(total)} MB in ${parts.length} parts, loaded in ${(hook.buildingMs / 1000).toFixed(1)} s`;
 }
 
 // ---------------------------------------------------------------- storeys
@@ -362,7 +418,8 @@ function showStorey(i) {
   addZones(st);
   addOverlays(st);
   releaseKeys();
-  for (const r of liveRobots) { scene.remove(r.group); r.rays.forEach((l) => scene.remove(l)); }
+  for (const r of liveRobots) removeRobot(r);
+  lastPoses = null;
   liveRobots = (st.robots || []).map((spec, k) => makeRobot(spec, k));
   liveRobots.forEach((r) => {
     if (r.spec.start) placeRobot(r, { x: r.spec.start[0], y: r.spec.start[1], heading_deg: r.spec.heading_deg || 0, rays: [] });
@@ -376,6 +433,7 @@ function showStorey(i) {
   applyColours();
   fitTop();
   frameStorey();
+  redraw();
 }
 
 $('storey').addEventListener('change', (e) => send({ type: 'storey', index: Number(e.target.value) }));
@@ -387,6 +445,7 @@ function setFollow(on) {
   follow = on;
   hook.follow = on;
   $('follow').textContent = `Follow Robot1: ${on ? 'on' : 'off'}`;
+  redraw();
 }
 $('follow').addEventListener('click', () => setFollow(!follow));
 
@@ -400,6 +459,7 @@ function followRobot() {
     orbit.target.add(delta);
     perspective.position.add(delta);
     orbit.update();
+    redraw();
   }
   pan.target.copy(p);
   top.position.set(p.x, elevation + 100, p.z);
@@ -417,10 +477,27 @@ renderer.domElement.addEventListener('pointerup', (e) => {
   const r = renderer.domElement.getBoundingClientRect();
   const ndc = new THREE.Vector2(((e.clientX - r.left) / r.width) * 2 - 1, -((e.clientY - r.top) / r.height) * 2 + 1);
   raycaster.setFromCamera(ndc, camera);
-  const targets = [...elementMeshes, ...(capGroup.visible ? capGroup.children : []), ...(zoneGroup.visible ? zoneGroup.children : [])];
-  const hit = raycaster.intersectObjects(targets, false).find((h) => h.object.visible && belowCut(h.point));
-  inspect(hit ? hit.object.userData.element : null);
+  const hit = pickAt(ndc, true);
+  inspect(hit ? hit.id : null);
 });
+
+// What the view shows at `ndc`: the nearest element (below the cut unless X-ray), cap or
+// (when `zones`) zone, as { id, point, distance }, or null.
+const sceneInverse = new THREE.Matrix4();
+function pickAt(ndc, zones) {
+  raycaster.setFromCamera(ndc, camera);
+  scene.updateMatrixWorld();
+  sceneInverse.copy(scene.matrixWorld).invert();
+  const ray = raycaster.ray.clone().applyMatrix4(sceneInverse);
+  let best = building.pick(ray, (p) => belowCut(p.clone().applyMatrix4(scene.matrixWorld)));
+  if (best) best.distance = best.point.clone().applyMatrix4(scene.matrixWorld).distanceTo(raycaster.ray.origin);
+  const flats = [...(caps && capGroup.visible ? [caps.mesh] : []), ...(zones && zoneGroup.visible ? zoneGroup.children : [])];
+  const hit = raycaster.intersectObjects(flats, false)[0];
+  if (hit && (!best || hit.distance < best.distance)) {
+    best = { id: hit.object === caps?.mesh ? caps.idAt(hit.faceIndex) : hit.object.userData.element, point: hit.point, distance: hit.distance };
+  }
+  return best;
+}
 
 // True for a point the section plane keeps (everything in X-ray view).
 function belowCut(p) {
@@ -432,12 +509,9 @@ function esc(s) {
 }
 
 function highlight(id, on) {
-  const el = elementsById.get(id);
-  if (!el) return;
-  for (const m of el.meshes) {
-    if (m.material.emissive) m.material = m.material.clone();
-    if (m.material.emissive) m.material.emissive.set(on ? 0x1d4ed8 : 0x000000);
-  }
+  building.setColour(id, undefined, on);
+  building.flush();
+  redraw();
 }
 
 async function inspect(id) {
@@ -450,7 +524,7 @@ async function inspect(id) {
   }
   highlight(id, true);
   const el = elementsById.get(id);
-  const local = el ? el.object.userData : {};
+  const local = el ? el.data : {};
   let info = null;
   try {
     const r = await fetch(`/api/element/${encodeURIComponent(id)}`);
@@ -473,6 +547,7 @@ async function inspect(id) {
 // ---------------------------------------------------------------- robots
 const BODY_COLOURS = ['#ea580c', '#4f46e5', '#0d9488', '#be123c'];
 const BODY_HEIGHT = 0.3;
+const RAYS = 5; // rays drawn per robot
 
 function makeRobot(spec, index) {
   const group = new THREE.Group();
@@ -497,15 +572,21 @@ function makeRobot(spec, index) {
   }
   brush.position.set(length * 0.5, 0.03, 0);
   group.add(brush);
-  const rays = [];
-  for (let k = 0; k < 5; k++) {
-    const g = new THREE.BufferGeometry().setAttribute('position', new THREE.Float32BufferAttribute([0, 0, 0, 1, 0, 0], 3));
-    const line = new THREE.Line(g, new THREE.LineBasicMaterial({ color: spec.ray_clear || '#22c55e' }));
-    scene.add(line);
-    rays.push(line);
-  }
-  scene.add(group);
-  return { spec, group, brush, disc, rays, clear: new THREE.Color(spec.ray_clear || '#22c55e'), hitColour: new THREE.Color(spec.ray_hit || '#ef4444'), pose: null };
+  // The rays: one set of line segments, updated in place, coloured per ray.
+  const g = new THREE.BufferGeometry();
+  g.setAttribute('position', new THREE.BufferAttribute(new Float32Array(RAYS * 6), 3).setUsage(THREE.DynamicDrawUsage));
+  g.setAttribute('color', new THREE.BufferAttribute(new Float32Array(RAYS * 6), 3).setUsage(THREE.DynamicDrawUsage));
+  g.setDrawRange(0, 0);
+  const lines = new THREE.LineSegments(g, new THREE.LineBasicMaterial({ vertexColors: true }));
+  lines.frustumCulled = false;
+  scene.add(lines, group);
+  const clear = new THREE.Color(spec.ray_clear || '#22c55e');
+  return { spec, group, brush, disc, lines, rayColours: [], clear, hitColour: new THREE.Color(spec.ray_hit || '#ef4444'), pose: null };
+}
+
+function removeRobot(r) {
+  scene.remove(r.group, r.lines);
+  r.lines.geometry.dispose();
 }
 
 function placeRobot(r, s) {
@@ -515,18 +596,23 @@ function placeRobot(r, s) {
   r.brush.rotation.y = ((s.brush?.angle_deg || 0) * Math.PI) / 180;
   r.disc.material.color.set(s.brush?.on ? 0xfacc15 : 0x94a3b8);
   const rayHeight = y + BODY_HEIGHT * 0.6;
-  (s.rays || []).forEach((ray, k) => {
-    const line = r.rays[k];
-    if (!line) return;
+  const rays = (s.rays || []).slice(0, RAYS);
+  const p = r.lines.geometry.attributes.position;
+  const c = r.lines.geometry.attributes.color;
+  rays.forEach((ray, k) => {
     const a = ((s.heading_deg + ray.deg) * Math.PI) / 180;
-    const p = line.geometry.attributes.position;
-    p.setXYZ(0, s.x, rayHeight, -s.y);
-    p.setXYZ(1, s.x + Math.cos(a) * ray.d, rayHeight, -(s.y + Math.sin(a) * ray.d));
-    p.needsUpdate = true;
-    line.geometry.computeBoundingSphere();
-    line.material.color.copy(ray.hit ? r.hitColour : r.clear);
+    p.setXYZ(2 * k, s.x, rayHeight, -s.y);
+    p.setXYZ(2 * k + 1, s.x + Math.cos(a) * ray.d, rayHeight, -(s.y + Math.sin(a) * ray.d));
+    const colour = ray.hit ? r.hitColour : r.clear;
+    c.setXYZ(2 * k, colour.r, colour.g, colour.b);
+    c.setXYZ(2 * k + 1, colour.r, colour.g, colour.b);
+    r.rayColours[k] = colour;
   });
+  p.needsUpdate = true;
+  c.needsUpdate = true;
+  r.lines.geometry.setDrawRange(0, 2 * rays.length);
   r.pose = s;
+  moved();
 }
 
 function robotReport(r) {
@@ -539,7 +625,7 @@ function robotReport(r) {
     heading_deg: s.heading_deg,
     speed: s.speed,
     brush_on: !!s.brush?.on,
-    rays: r.rays.map((line, k) => ({ deg: s.rays?.[k]?.deg, d: s.rays?.[k]?.d, hit: s.rays?.[k]?.hit ?? null, colour: `#${line.material.color.getHexString()}` })),
+    rays: Array.from({ length: RAYS }, (_, k) => ({ deg: s.rays?.[k]?.deg, d: s.rays?.[k]?.d, hit: s.rays?.[k]?.hit ?? null, colour: `#${(r.rayColours[k] ?? r.clear).getHexString()}` })),
   };
 }
 
@@ -589,11 +675,11 @@ function addEvents(events) {
   for (const e of events) {
     if (e.kind === 'key') continue;
     if (e.kind === 'status-changed' && elementsById.has(e.element)) {
-      elementsById.get(e.element).object.userData.AccessibilityStatus = e.to;
+      elementsById.get(e.element).data.AccessibilityStatus = e.to;
       applyColours();
     }
     if ((e.kind === 'role-added' || e.kind === 'role-removed') && elementsById.has(e.element)) {
-      const d = elementsById.get(e.element).object.userData;
+      const d = elementsById.get(e.element).data;
       const roles = new Set(roleList(d.POI_ConditionalRoles));
       if (e.kind === 'role-added') roles.add(e.role); else roles.delete(e.role);
       d.POI_ConditionalRoles = [...roles];
@@ -620,6 +706,9 @@ function robotsTable(robots) {
 
 // ---------------------------------------------------------------- WebSocket
 let socket = null;
+let lastPoses = null; // the robots of the last state, as JSON
+let movedAt = -Infinity; // when robots last moved
+let panelAt = -Infinity; // when the robots table was last written
 let playing = null; // playback state when a trace is loaded and shown
 function connect() {
   socket = new WebSocket(`${location.protocol === 'https:' ? 'wss' : 'ws'}://${location.host}/ws`);
@@ -633,9 +722,20 @@ function connect() {
       hook.states += 1;
       hook.lastState = msg;
       if (msg.storey !== undefined && msg.storey !== storeyIndex) showStorey(msg.storey);
-      msg.robots.forEach((s, i) => { if (liveRobots[i]) placeRobot(liveRobots[i], s); });
+      // Robots standing still need no new frame.
+      const poses = JSON.stringify(msg.robots);
+      if (poses !== lastPoses) {
+        const now = performance.now();
+        if (lastPoses !== null && now - movedAt < 250) hook.motion.ms += now - movedAt;
+        movedAt = now;
+        lastPoses = poses;
+        msg.robots.forEach((s, i) => { if (liveRobots[i]) placeRobot(liveRobots[i], s); });
+      }
       if (msg.events.length) addEvents(msg.events);
-      if (!playing) {
+      // The panel's text at most five times a second: each change costs a layout.
+      const now = performance.now();
+      if (!playing && now - panelAt >= 200) {
+        panelAt = now;
         robotsTable(liveRobots);
         $('status').textContent = `live · t = ${msg.t.toFixed(1)} s${msg.paused ? ' · paused' : ''}`;
       }
@@ -710,8 +810,9 @@ function showFrame(i) {
 }
 
 function setLiveVisible(v) {
-  for (const r of liveRobots) { r.group.visible = v; r.rays.forEach((l) => { l.visible = v; }); }
-  for (const r of playRobots) { r.group.visible = !v; r.rays.forEach((l) => { l.visible = !v; }); }
+  for (const r of liveRobots) { r.group.visible = v; r.lines.visible = v; }
+  for (const r of playRobots) { r.group.visible = !v; r.lines.visible = !v; }
+  redraw();
 }
 
 $('trace-file').addEventListener('change', async (e) => {
@@ -719,7 +820,7 @@ $('trace-file').addEventListener('change', async (e) => {
   if (!file) return;
   try {
     const trace = parseTrace(await file.text());
-    for (const r of playRobots) { scene.remove(r.group); r.rays.forEach((l) => scene.remove(l)); }
+    for (const r of playRobots) removeRobot(r);
     playRobots = trace.names.map((n, k) => {
       const live = hook.scene.robots.find((s) => s.name === n);
       return makeRobot(live || { name: n, ray_clear: '#22c55e', ray_hit: ['#ef4444', '#3b82f6'][k] || '#f59e0b' }, k);
@@ -778,16 +879,14 @@ hook.robots = () => (playing ? playRobots : liveRobots).map(robotReport);
 hook.screenPoint = (classPrefix) => {
   const rect = renderer.domElement.getBoundingClientRect();
   for (const [id, el] of elementsById) {
-    if (!(el.object.userData.IfcClass || '').startsWith(classPrefix)) continue;
-    const box = new THREE.Box3().setFromObject(el.object);
+    if (!(el.data.IfcClass || '').startsWith(classPrefix) || !el.pieces.length || !building.drawn(el)) continue;
+    const box = el.box.clone().applyMatrix4(scene.matrixWorld);
     const p = box.getCenter(new THREE.Vector3());
     p.y = xray ? box.max.y : Math.min(box.max.y, cutPlane.constant - 0.01);
     const ndc = p.clone().project(camera);
     if (Math.abs(ndc.x) > 0.9 || Math.abs(ndc.y) > 0.9) continue;
-    raycaster.setFromCamera(new THREE.Vector2(ndc.x, ndc.y), camera);
-    const targets = [...elementMeshes, ...(capGroup.visible ? capGroup.children : [])];
-    const hit = raycaster.intersectObjects(targets, false).find((h) => belowCut(h.point));
-    if (!hit || hit.object.userData.element !== id) continue;
+    const hit = pickAt(new THREE.Vector2(ndc.x, ndc.y), false);
+    if (!hit || hit.id !== id) continue;
     return { id, x: rect.left + ((ndc.x + 1) / 2) * rect.width, y: rect.top + ((1 - ndc.y) / 2) * rect.height };
   }
   return null;
@@ -796,8 +895,8 @@ hook.screenPoint = (classPrefix) => {
 hook.elementColour = (name) => {
   const wanted = name.replace(/\s/g, '_');
   for (const [id, el] of elementsById) {
-    if (el.object.name !== wanted && el.object.name !== name) continue;
-    return { id, status: el.object.userData.AccessibilityStatus ?? null, colour: `#${el.meshes[0].material.color.getHexString()}` };
+    if (el.name !== wanted && el.name !== name) continue;
+    return { id, status: el.data.AccessibilityStatus ?? null, colour: `#${el.colour.getHexString()}` };
   }
   return null;
 };
@@ -818,7 +917,51 @@ hook.countColours = (colours, tol = 30) => {
   return counts;
 };
 // The door passages drawn on the storey: id, status and colour.
-hook.doors = () => [...doorMeshes].map(([id, m]) => ({ id, status: elementsById.get(id)?.object.userData.AccessibilityStatus ?? m.userData.status, colour: `#${m.material.color.getHexString()}` }));
+hook.doors = () => [...(doors?.items.values() ?? [])].map((d) => ({ id: d.id, status: elementsById.get(d.id)?.data.AccessibilityStatus ?? d.status, colour: d.shown }));
+// What drawing the whole view costs: draw calls and triangles (all, and the building's); the
+// draw calls and pixels of the last frame (with the still picture: copying it, then the
+// robots); frames drawn; whether WebGL is software (and so the still picture used).
+hook.renderInfo = () => ({
+  calls: costs.calls, triangles: costs.triangles, frame_calls: costs.frameCalls, frame_pixels: costs.pixels, frames: hook.frames,
+  building: building.cost(), software: hook.software,
+});
+// Milliseconds one frame takes to draw, averaged over `n` frames drawn back to back (each
+// waited for by reading a pixel back), as the view is now: `whole` draws everything again
+// (the camera moved), otherwise only the robots moved.
+hook.renderTime = (n = 10, whole = true) => {
+  const gl = renderer.getContext();
+  const px = new Uint8Array(4);
+  const once = () => {
+    if (whole) redraw();
+    draw();
+    gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, px);
+  };
+  once();
+  const t0 = performance.now();
+  for (let k = 0; k < n; k += 1) once();
+  return (performance.now() - t0) / n;
+};
+// Pixels of the view as shown now (with the still picture: kept, then robots drawn over it)
+// that differ (sum of |dr|+|dg|+|db| over `tol`) from the view drawn whole again.
+hook.stillDiff = (tol = 24) => {
+  const grab = () => {
+    const c = document.createElement('canvas');
+    c.width = renderer.domElement.width;
+    c.height = renderer.domElement.height;
+    const g = c.getContext('2d');
+    g.drawImage(renderer.domElement, 0, 0);
+    return g.getImageData(0, 0, c.width, c.height).data;
+  };
+  const shown = grab();
+  redraw();
+  draw();
+  const whole = grab();
+  let differ = 0;
+  for (let i = 0; i < shown.length; i += 4) {
+    if (Math.abs(shown[i] - whole[i]) + Math.abs(shown[i + 1] - whole[i + 1]) + Math.abs(shown[i + 2] - whole[i + 2]) > tol) differ += 1;
+  }
+  return { differ, pixels: shown.length / 4 };
+};
 hook.cutAt = () => cutPlane.constant;
 hook.showTop = () => { setCamera('top'); fitTop(); };
 hook.cameraMatrix = () => camera.projectionMatrix.elements.concat(camera.matrixWorld.elements);
@@ -842,16 +985,142 @@ hook.coverage = () => {
   return differ / (px.length / 4);
 };
 
+// ---------------------------------------------------------------- the still picture
+// Under software WebGL the scene without the robots is drawn once into `still` (colour and
+// depth) and kept while the camera, the cut, the colours and the building stay; a frame where
+// only robots moved copies it back (a quad writing colour and depth) and draws the robots and
+// their rays over it, both only within the rectangle where the robots were and are (the
+// canvas keeps its other pixels: preserveDrawingBuffer), so moving robots cost what they draw
+// and the few pixels around them, not what the building does.
+let still = null;
+const quadCamera = new THREE.OrthographicCamera(-1, 1, 1, -1, 0, 1);
+const quadScene = new THREE.Scene();
+const quad = new THREE.Mesh(new THREE.PlaneGeometry(2, 2), new THREE.ShaderMaterial({
+  uniforms: { colour: { value: null }, depth: { value: null } },
+  vertexShader: 'varying vec2 vUv; void main() { vUv = uv; gl_Position = vec4(position.xy, 0.0, 1.0); }',
+  fragmentShader: `uniform sampler2D colour; uniform sampler2D depth; varying vec2 vUv;
+    void main() {
+      gl_FragColor = texture2D(colour, vUv);
+      gl_FragDepth = texture2D(depth, vUv).r;
+      #include <colorspace_fragment>
+    }`,
+  depthFunc: THREE.AlwaysDepth,
+}));
+quad.frustumCulled = false;
+quadScene.add(quad);
+const drawingSize = new THREE.Vector2();
+const costs = { calls: 0, triangles: 0, frameCalls: 0, pixels: 0 };
+let moverRectBefore = null; // where the robots were drawn last frame: [x0, y0, x1, y1], or null
+
+// The drawing-buffer rectangle (origin bottom left) holding the robots and their rays as the
+// camera sees them; null when one is behind the camera (then the whole view).
+const rectBox = new THREE.Box3();
+const rectPoint = new THREE.Vector3();
+function moverRect() {
+  rectBox.makeEmpty();
+  for (const r of [...liveRobots, ...playRobots]) {
+    if (!r.group.visible) continue;
+    rectBox.expandByObject(r.group);
+    const p = r.lines.geometry.attributes.position;
+    for (let i = 0; i < r.lines.geometry.drawRange.count && i < p.count; i += 1) rectBox.expandByPoint(rectPoint.fromBufferAttribute(p, i));
+  }
+  if (rectBox.isEmpty()) return [0, 0, 0, 0];
+  let [x0, y0, x1, y1] = [Infinity, Infinity, -Infinity, -Infinity];
+  for (let k = 0; k < 8; k += 1) {
+    rectPoint.set(k & 1 ? rectBox.max.x : rectBox.min.x, k & 2 ? rectBox.max.y : rectBox.min.y, k & 4 ? rectBox.max.z : rectBox.min.z);
+    rectPoint.project(camera);
+    if (!(rectPoint.z >= -1 && rectPoint.z <= 1)) return null;
+    const x = ((rectPoint.x + 1) / 2) * drawingSize.x;
+    const y = ((rectPoint.y + 1) / 2) * drawingSize.y;
+    x0 = Math.min(x0, x); y0 = Math.min(y0, y); x1 = Math.max(x1, x); y1 = Math.max(y1, y);
+  }
+  const clamp = (v, hi) => Math.max(0, Math.min(hi, v));
+  return [clamp(Math.floor(x0) - 3, drawingSize.x), clamp(Math.floor(y0) - 3, drawingSize.y),
+    clamp(Math.ceil(x1) + 3, drawingSize.x), clamp(Math.ceil(y1) + 3, drawingSize.y)];
+}
+
+function movers() {
+  return [...liveRobots, ...playRobots].flatMap((r) => [r.group, r.lines]);
+}
+
+function drawStill() {
+  renderer.getDrawingBufferSize(drawingSize);
+  if (!still || still.width !== drawingSize.x || still.height !== drawingSize.y) {
+    still?.dispose();
+    still = new THREE.WebGLRenderTarget(drawingSize.x, drawingSize.y, {
+      minFilter: THREE.NearestFilter, magFilter: THREE.NearestFilter, colorSpace: THREE.SRGBColorSpace,
+      depthTexture: new THREE.DepthTexture(drawingSize.x, drawingSize.y),
+    });
+    quad.material.uniforms.colour.value = still.texture;
+    quad.material.uniforms.depth.value = still.depthTexture;
+    stale = true;
+  }
+  if (stale) {
+    hook.stillDraws += 1;
+    const hidden = movers().map((o) => [o, o.visible]);
+    for (const [o] of hidden) o.visible = false;
+    renderer.setRenderTarget(still);
+    renderer.render(scene, camera);
+    renderer.setRenderTarget(null);
+    for (const [o, v] of hidden) o.visible = v;
+    costs.calls = renderer.info.render.calls;
+    costs.triangles = renderer.info.render.triangles;
+    stale = false;
+    moverRectBefore = null;
+  }
+  // The still picture, then the robots alone over it, where they were and are.
+  const now = moverRect();
+  const before = moverRectBefore;
+  moverRectBefore = now;
+  const rect = now && before
+    ? [Math.min(now[0], before[0]), Math.min(now[1], before[1]), Math.max(now[2], before[2]), Math.max(now[3], before[3])]
+    : [0, 0, drawingSize.x, drawingSize.y];
+  costs.pixels = Math.max(0, rect[2] - rect[0]) * Math.max(0, rect[3] - rect[1]);
+  if (costs.pixels === 0) return;
+  const ratio = renderer.getPixelRatio();
+  renderer.setScissor(rect[0] / ratio, rect[1] / ratio, (rect[2] - rect[0]) / ratio, (rect[3] - rect[1]) / ratio);
+  renderer.setScissorTest(true);
+  const shown = new Set(movers());
+  const hidden = scene.children.filter((o) => !o.isLight && !shown.has(o)).map((o) => [o, o.visible]);
+  const background = scene.background;
+  renderer.autoClear = false;
+  renderer.render(quadScene, quadCamera);
+  for (const [o] of hidden) o.visible = false;
+  scene.background = null;
+  renderer.render(scene, camera);
+  costs.frameCalls = 1 + renderer.info.render.calls;
+  scene.background = background;
+  for (const [o, v] of hidden) o.visible = v;
+  renderer.autoClear = true;
+  renderer.setScissorTest(false);
+}
+
+function draw() {
+  if (hook.software && !renderer.xr.isPresenting) {
+    drawStill();
+    return;
+  }
+  renderer.render(scene, camera);
+  costs.calls = renderer.info.render.calls;
+  costs.triangles = renderer.info.render.triangles;
+  costs.frameCalls = costs.calls;
+}
+
 // ---------------------------------------------------------------- start
 const clock = new THREE.Timer();
 function frame(time) {
   clock.update(time);
   advancePlayback(Math.min(clock.getDelta(), 0.1));
   followRobot();
-  renderer.render(scene, camera);
-  hook.frames = (hook.frames || 0) + 1;
-  if (hook.firstFrameMs === null) hook.firstFrameMs = performance.now();
-  if (hook.buildingFrameMs === null && hook.buildingMs !== null) hook.buildingFrameMs = performance.now();
+  if (!dirty && !renderer.xr.isPresenting) return;
+  dirty = false;
+  draw();
+  hook.frames += 1;
+  if (performance.now() - movedAt < 250) hook.motion.frames += 1;
+  const now = performance.now();
+  if (hook.firstFrameMs === null) hook.firstFrameMs = now;
+  if (hook.storeyFrameMs === null && hook.storeyMs !== null) hook.storeyFrameMs = now;
+  if (hook.buildingFrameMs === null && hook.buildingMs !== null) hook.buildingFrameMs = now;
 }
 
 async function start() {

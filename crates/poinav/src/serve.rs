@@ -9,13 +9,15 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use anyhow::Context;
-use poinav_export::SceneInput;
+use poinav_export::glb::GlbOptions;
+use poinav_export::glb_chunks::to_glb_per_storey;
+use poinav_export::scene::NO_STOREY;
 use poinav_geom::{floor_plans_with_meshes, mesh_model, PlanOptions};
 use poinav_ifc::property::{property_sets, PropertyValue, Scalar, TypedScalar};
 use poinav_ifc::{spatial, units, Model};
 use poinav_poi::{classify, Classification};
 use poinav_sim::{RobotSetup, Scenario, SimOptions};
-use poinav_viewer::{ElementInfo, ServerConfig, ViewStorey, Viewer};
+use poinav_viewer::{ElementInfo, ModelChunk, ServerConfig, ViewStorey, Viewer};
 
 /// Arguments of `poinav serve`.
 #[derive(Debug, clap::Args)]
@@ -85,10 +87,10 @@ fn value_text(v: &PropertyValue) -> String {
     }
 }
 
-/// What the viewer shows of a model: the GLB, the click-to-inspect data, every storey as a floor
-/// (lowest first) and the index of the storey the robots drive on first.
+/// What the viewer shows of a model: one GLB per storey, the click-to-inspect data, every storey
+/// as a floor (lowest first) and the index of the storey the robots drive on first.
 struct Shown {
-    glb: Vec<u8>,
+    model: Vec<ModelChunk>,
     elements: BTreeMap<String, ElementInfo>,
     floors: Vec<poinav_nav::Floor>,
     current: usize,
@@ -100,14 +102,9 @@ fn building(
     classification: &Classification,
     storey: Option<&str>,
 ) -> anyhow::Result<Shown> {
-    let meshes = mesh_model(model);
+    let mut meshes = mesh_model(model);
     let unit = units::length_unit(model);
     let structure = spatial::spatial_structure(model, &unit);
-    let glb = poinav_export::glb::to_glb(&SceneInput {
-        storeys: &structure.storeys,
-        elements: &meshes.elements,
-        poi: Some(classification),
-    });
     let storey_name = |id| {
         structure
             .storeys
@@ -165,8 +162,30 @@ fn building(
         .iter()
         .map(|p| poinav_sim::ifc_floor::floor_from_plan(p, classification))
         .collect();
+    // One GLB per storey, so the page draws the simulated storey before the rest arrives.
+    let model = to_glb_per_storey(
+        &structure.storeys,
+        &mut meshes.elements,
+        Some(classification),
+        GlbOptions::COMPACT,
+    )
+    .into_iter()
+    .map(|c| {
+        let storey = c.storey.map(|g| &structure.storeys[g]);
+        ModelChunk {
+            storey: storey.and_then(|s| plans.iter().position(|p| p.storey == s.id)),
+            name: storey.map_or(NO_STOREY.to_string(), |s| s.label()),
+            elevation_m: storey
+                .and_then(|s| s.elevation_m)
+                .filter(|e| e.is_finite())
+                .unwrap_or(0.0),
+            elements: c.elements,
+            glb: c.glb,
+        }
+    })
+    .collect();
     Ok(Shown {
-        glb,
+        model,
         elements,
         floors,
         current,
@@ -212,7 +231,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         .as_deref()
         .or(scenario.as_ref().and_then(|s| s.building.storey.as_deref()));
     let Shown {
-        glb,
+        model,
         elements,
         floors,
         current,
@@ -266,7 +285,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     };
     let viewer = Viewer {
         title,
-        glb,
+        model,
         elements,
         storeys,
         current,

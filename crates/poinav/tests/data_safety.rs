@@ -256,11 +256,11 @@ fn commands(input: &Path, out: &Path, is_demo: bool) -> Vec<(&'static str, Vec<O
     cmds
 }
 
-/// `poinav serve FILE`, asked for the building, then stopped: the GLB's size, or the exit
-/// code when the server does not start.
+/// `poinav serve FILE`, asked for the building's first part, then stopped: the GLB's size, or
+/// the exit code when the server does not start.
 fn serve_once(input: &Path) -> Result<usize, i32> {
     let server = common::serve(&[input.as_os_str()], Path::new("."))?;
-    let (status, glb) = common::http_get(&server.addr, "/api/model.glb");
+    let (status, glb) = common::http_get(&server.addr, "/api/model/0.glb");
     assert_eq!(
         (status, &glb[..4]),
         (200, &b"glTF"[..]),

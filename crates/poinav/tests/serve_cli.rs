@@ -29,10 +29,19 @@ fn serves_a_corpus_building_with_two_robots_on_loopback() {
         scene["zones"]
     );
     assert!(!scene["doors"].as_array().unwrap().is_empty());
-    let (status, glb) = get(addr, "/api/model.glb");
-    assert_eq!(status, 200);
-    assert_eq!(&glb[..4], b"glTF");
-    assert!(glb.len() > 100_000, "GLB {} bytes", glb.len());
+    // The building in parts, one GLB per storey, each as the scene lists it.
+    let parts = scene["model"].as_array().unwrap();
+    assert!(!parts.is_empty());
+    let mut bytes = 0;
+    for part in parts {
+        let (status, glb) = get(addr, part["url"].as_str().unwrap());
+        assert_eq!(status, 200);
+        assert_eq!(&glb[..4], b"glTF");
+        assert_eq!(glb.len() as u64, part["bytes"].as_u64().unwrap());
+        bytes += glb.len();
+    }
+    assert!(bytes > 100_000, "GLB {bytes} bytes");
+    assert!(parts.iter().any(|p| p["storey"] == scene["current"]));
     // A door: what a click shows.
     let door = scene["doors"][0]["id"].as_str().unwrap().to_string();
     let (status, body) = get(addr, &format!("/api/element/{door}"));

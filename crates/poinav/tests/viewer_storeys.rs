@@ -1,9 +1,13 @@
 //! The viewer on the corpus's multi-storey buildings in Debian's Chromium (headless), driven by
 //! Playwright (tests/js/viewer-storeys.mjs): `poinav serve FILE` without a scenario; from
 //! straight above the robots' rays and the doors' colours show on the simulated storey (the
-//! storeys above are cut away), switching the storey moves the robots and the section plane, and
-//! ArrowUp drives Robot1 at least 1 m in 2.5 s without touching Robot2. Prints the first-frame
-//! time, the building's load time and the frame rate per model. Needs node,
+//! storeys above are cut away), switching the storey moves the robots and the section plane,
+//! ArrowUp drives Robot1 at least 1 m in 2.5 s without touching Robot2, the building arrives one
+//! GLB per storey with the simulated storey's first, is drawn in few draw calls, is not redrawn
+//! while nothing moves, frames where only robots moved show what a whole drawing shows, and
+//! X-ray leaves the storey cut. Prints the first-frame time, the simulated storey's and the
+//! building's load times, the frame rate while Robot1 drives, the time one frame takes
+//! (everything, and only the robots moved) and the load average per model. Needs node,
 //! tests/js/node_modules and /usr/bin/chromium (tests/js/setup.sh installs them).
 
 mod common;
@@ -34,7 +38,8 @@ fn viewer_on(model: &str) {
     );
     assert!(ok, "{report:#}");
     let checks = report["checks"].as_object().unwrap();
-    assert_eq!(checks.len(), 7, "{report:#}");
+    assert_eq!(checks.len(), 12, "{report:#}");
+    assert!(checks.values().all(|c| c["ok"] == true));
     let m = |check: &str, key: &str| report["checks"][check]["measured"][key].clone();
     assert!(m("rays visible from above", "ray_pixels").as_u64().unwrap() > 50);
     assert!(
@@ -51,11 +56,25 @@ fn viewer_on(model: &str) {
         .as_f64(),
         Some(0.0)
     );
+    assert_eq!(
+        m("no frames while nothing moves", "frames").as_u64(),
+        Some(0)
+    );
+    let f = |key: &str| report[key].as_f64().unwrap_or(f64::NAN);
     eprintln!(
-        "{model}: first frame {:.0} ms, building loaded in {:.0} ms, {:.1} frames/s",
-        report["first_frame_ms"].as_f64().unwrap_or(f64::NAN),
-        report["building_ms"].as_f64().unwrap_or(f64::NAN),
-        report["frames_per_s"].as_f64().unwrap_or(f64::NAN)
+        "{model}: first frame {:.0} ms, simulated storey loaded in {:.0} ms (drawn at {:.0} ms), \
+         building loaded in {:.0} ms (drawn at {:.0} ms), {:.1} frames/s while Robot1 drives, \
+         a frame takes {:.0} ms ({:.0} ms when only robots move), {} draw calls, load average {}",
+        f("first_frame_ms"),
+        f("storey_ms"),
+        f("storey_frame_ms"),
+        f("building_ms"),
+        f("building_frame_ms"),
+        f("frames_per_s"),
+        f("render_ms"),
+        f("robots_ms"),
+        report["draw_calls"],
+        report["load_average"]
     );
 }
 
