@@ -53,6 +53,17 @@ pub fn array2<'py, T: numpy::Element>(
     Ok(a.into_pyarray(py).into_any())
 }
 
+/// An `(n, k)` numpy array of `rows`, its memory the vector's (no copy).
+pub fn rows<'py, T: numpy::Element, const K: usize>(
+    py: Python<'py>,
+    rows: Vec<[T; K]>,
+) -> PyResult<Bound<'py, PyAny>> {
+    let n = rows.len();
+    let a = Array2::from_shape_vec((n, K), rows.into_flattened())
+        .map_err(|e| crate::error::PoinavError::new_err(e.to_string()))?;
+    Ok(a.into_pyarray(py).into_any())
+}
+
 fn scalar<'a, 'py>(
     py: Python<'py>,
     s: &'a TypedScalar,
@@ -83,7 +94,8 @@ fn scalars<'a, 'py>(
 }
 
 /// A property's value as IfcOpenShell's `get_psets` gives it: a scalar, a list (enumerated
-/// and list values), a `(lower, upper)` tuple (bounded), a dict (complex), the `#id` (others).
+/// and list values; None when unset), a `(lower, upper)` tuple (bounded), a dict (complex),
+/// the `#id` (others).
 pub fn property_value<'a, 'py>(
     py: Python<'py>,
     v: &'a PropertyValue,
@@ -92,6 +104,11 @@ pub fn property_value<'a, 'py>(
     Ok(match v {
         PropertyValue::Single(None) => py.None().into_bound(py),
         PropertyValue::Single(Some(s)) => scalar(py, s, strings)?,
+        // IFC lists have at least one item: an empty one was unset (`$`), None as for
+        // IfcOpenShell.
+        PropertyValue::Enumerated(l) | PropertyValue::List(l) if l.is_empty() => {
+            py.None().into_bound(py)
+        }
         PropertyValue::Enumerated(l) | PropertyValue::List(l) => scalars(py, l, strings)?,
         PropertyValue::Bounded(lo, hi) => {
             let mut f = |s: &'a Option<TypedScalar>| match s {
