@@ -189,6 +189,9 @@ impl Model {
             }
             out.set_item(gid, d)?;
         }
+        drop(strings);
+        // Freeing the library's values needs no GIL.
+        py.detach(move || drop(all));
         Ok(out)
     }
 
