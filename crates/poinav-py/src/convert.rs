@@ -11,7 +11,7 @@ use pyo3::types::{PyDict, PyList, PyString, PyTuple};
 
 /// Python strings made once per distinct text: property and set names repeat across a
 /// model's products, and making each anew was most of the conversion's time. (FxHash: the
-/// default SipHash was a fifth of what remained.)
+/// default SipHash was a seventh of what remained.)
 #[derive(Debug, Default)]
 pub struct Strings<'a, 'py> {
     made: FxHashMap<&'a str, Bound<'py, PyString>>,
