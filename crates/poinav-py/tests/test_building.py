@@ -76,6 +76,18 @@ def test_routes_reuse_the_prepared_navigator(fzk):
     assert b.navigators_built == 2
 
 
+def test_routes_from_threads_share_one_navigator(fzk):
+    # The GIL is released while routing: threads wait for the one navigator, none rebuilds it.
+    from concurrent.futures import ThreadPoolExecutor
+
+    b = fzk.building()
+    with ThreadPoolExecutor(4) as pool:
+        routes = list(pool.map(lambda _: b.route("outside", "Wohnen"), range(8)))
+    assert b.navigators_built == 1
+    assert all(r == routes[0] for r in routes)
+    assert routes[0]["length_m"] == pytest.approx(fzk.building().route("outside", "Wohnen")["length_m"])
+
+
 def test_no_route_and_unknown_place(fzk_building):
     with pytest.raises(poinav.NoRouteError):
         fzk_building.route("outside", "Galerie")  # upstairs, by a spiral stair only
