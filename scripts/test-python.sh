@@ -1,11 +1,13 @@
 #!/usr/bin/env bash
 # The Python package (crates/poinav-py): builds the wheel with maturin (pinned, installed into
 # .venv by setup-python.sh) with the `ci` profile (shares target/ with the workspace's tests;
-# POINAV_PROFILE=dev for the unoptimised build), installs it into a fresh venv .venv-wheel
-# with the pinned test packages (numpy, pandas, dask, pytest, ifcopenshell from
-# requirements-test.txt), and runs pytest on crates/poinav-py/tests. Needs the corpus
-# (POINAV_SHARED, default ../shared) and the `poinav` CLI, built here with the same profile,
-# for the JSON comparisons.
+# POINAV_PROFILE=dev for the unoptimised build), installs it into its own venv .venv-wheel as a
+# user would, with its declared dependencies and the `dask` extra, pinned by
+# requirements-test.txt, plus pytest and IfcOpenShell; then runs pytest on
+# crates/poinav-py/tests. .venv-wheel is made afresh (always in CI's clean clone) when it is
+# missing or requirements-test.txt or pyproject.toml changed; otherwise only the wheel is
+# reinstalled. Needs the corpus (POINAV_SHARED, default ../shared) and the `poinav` CLI, built
+# here with the same profile, for the JSON comparisons.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
@@ -20,11 +22,21 @@ rm -rf "$wheels"
     --profile "$profile" --interpreter "$root/.venv/bin/python" --out "$wheels"
 cargo build --quiet -p poinav --locked --profile "$profile"
 
-rm -rf "$venv"
-"$root/.venv/bin/python" -m venv "$venv"
-purelib='import sysconfig; print(sysconfig.get_paths()["purelib"])'
-"$root/.venv/bin/python" -c "$purelib" > "$("$venv/bin/python" -c "$purelib")/_poinav_test_packages.pth"
-"$venv/bin/python" -m pip install --quiet --disable-pip-version-check "$wheels"/poinav-*.whl
+wheel="$(ls "$wheels"/poinav-*.whl)"
+# .venv's pip installs into .venv-wheel (made without pip of its own: ensurepip costs seconds).
+pip=("$root/.venv/bin/python" -m pip --python "$venv/bin/python" install --quiet
+     --disable-pip-version-check --no-compile)
+stamp="$venv/.poinav-test-venv.sha256"
+want="$(cat scripts/requirements-test.txt crates/poinav-py/pyproject.toml | sha256sum | cut -d' ' -f1)"
+if [[ -x "$venv/bin/python" && "$(cat "$stamp" 2>/dev/null)" == "$want" ]]; then
+    "${pip[@]}" --force-reinstall --no-deps "$wheel"
+else
+    rm -rf "$venv"
+    "$root/.venv/bin/python" -m venv --without-pip "$venv"
+    # What `pip install poinav[dask]` brings (numpy, pandas, dask, distributed), at the pins.
+    "${pip[@]}" -c scripts/requirements-test.txt "$wheel[dask]" pytest ifcopenshell
+    echo "$want" > "$stamp"
+fi
 
 export POINAV_SHARED="${POINAV_SHARED:-$root/../shared}"
 export POINAV_CLI="$root/target/$out_dir/poinav"

@@ -4,15 +4,14 @@
 
 use std::path::PathBuf;
 
-use poinav_nav::{
-    AuditOptions, FurnitureMode, GridOptions, NavError, NavGrid, NavOptions, Navigator, Place,
-};
+use poinav_nav::{AuditOptions, FurnitureMode, GridOptions, NavError, NavGrid, NavOptions, Place};
 use poinav_poi::{classify, RobotProfile, RuleSet};
 use pyo3::prelude::*;
 use serde_json::json;
 
 use crate::convert;
 use crate::error::{to_py, NoRouteError, PoinavError};
+use crate::navigators::Navigators;
 
 /// A building prepared for navigation.
 #[pyclass(frozen, module = "poinav._native")]
@@ -22,6 +21,8 @@ pub struct Building {
     profile: RobotProfile,
     warnings: Vec<String>,
     meshed: usize,
+    /// Prepared navigators: routes after the first rasterise nothing.
+    navigators: Navigators,
 }
 
 impl Building {
@@ -65,6 +66,7 @@ impl Building {
             profile,
             warnings,
             meshed,
+            navigators: Navigators::default(),
         })
     }
 
@@ -234,6 +236,14 @@ impl Building {
         self.meshed
     }
 
+    /// How many times the storeys were rasterised for routes: once per set of options
+    /// (`resolution`, `furniture`, `pending_closed`), the last four kept; later routes and
+    /// grids with the same options reuse them.
+    #[getter]
+    fn navigators_built(&self) -> usize {
+        self.navigators.built()
+    }
+
     /// The occupancy grid of `storey` (its name or index) for the profile (see `Grid`).
     #[pyo3(signature = (storey, resolution = 0.05, furniture = "obstacle", pending_closed = false))]
     fn grid<'py>(
@@ -248,26 +258,36 @@ impl Building {
         let options = nav_options(resolution, furniture, pending_closed)?;
         let grid = py
             .detach(|| {
-                let g = GridOptions {
-                    at_ground: self.inner.at_ground(fi),
-                    ..options.grid.clone()
-                };
-                NavGrid::build(
-                    &self.inner.floors[fi],
-                    &self.profile,
-                    &g,
-                    &options.inflation,
-                )
+                // A route with these options made this grid already.
+                let kept = self
+                    .navigators
+                    .with_kept(&self.inner, &options, |nav| nav.floors[fi].grid.clone());
+                match kept {
+                    Some(grid) => Ok(grid),
+                    None => {
+                        let g = GridOptions {
+                            at_ground: self.inner.at_ground(fi),
+                            ..options.grid.clone()
+                        };
+                        NavGrid::build(
+                            &self.inner.floors[fi],
+                            &self.profile,
+                            &g,
+                            &options.inflation,
+                        )
+                    }
+                }
             })
             .map_err(to_py)?;
         let o = &grid.occupancy;
         let cells: Vec<u8> = o.cells.iter().map(|c| *c as u8).collect();
+        let width = o.width.max(1);
         Ok(Grid {
             storey: self.inner.floors[fi].name.clone(),
-            cells: convert::array2(py, cells, o.width.max(1))?.unbind(),
-            clearance_m: convert::array2(py, grid.clearance_m.clone(), o.width.max(1))?.unbind(),
+            cells: convert::array2(py, cells, width)?.unbind(),
             resolution: o.resolution_m,
             origin: (o.origin.x, o.origin.y),
+            clearance_m: convert::array2(py, grid.clearance_m, width)?.unbind(),
         })
     }
 
@@ -288,8 +308,11 @@ impl Building {
         let from: Place = a.parse().map_err(PoinavError::new_err)?;
         let to: Place = b.parse().map_err(PoinavError::new_err)?;
         let route = py.detach(|| {
-            let nav = Navigator::new(&self.inner, &self.profile, &options)?;
-            nav.route(&from, &to)
+            self.navigators
+                .with(&self.inner, &self.profile, &options, |nav| {
+                    nav.route(&from, &to)
+                })
+                .and_then(|r| r)
         });
         let mut v = serde_json::to_value(route.map_err(route_error)?).map_err(to_py)?;
         v["warnings"] = json!(self.warnings);

@@ -4,16 +4,17 @@
 use numpy::ndarray::Array2;
 use numpy::IntoPyArray;
 use poinav_ifc::property::{Property, PropertyValue, Scalar, TypedScalar};
-use std::collections::HashMap;
+use rustc_hash::FxHashMap;
 
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyString, PyTuple};
 
 /// Python strings made once per distinct text: property and set names repeat across a
-/// model's products, and making each anew was most of the conversion's time.
+/// model's products, and making each anew was most of the conversion's time. (FxHash: the
+/// default SipHash was a seventh of what remained.)
 #[derive(Debug, Default)]
 pub struct Strings<'a, 'py> {
-    made: HashMap<&'a str, Bound<'py, PyString>>,
+    made: FxHashMap<&'a str, Bound<'py, PyString>>,
 }
 
 impl<'a, 'py> Strings<'a, 'py> {
@@ -53,6 +54,17 @@ pub fn array2<'py, T: numpy::Element>(
     Ok(a.into_pyarray(py).into_any())
 }
 
+/// An `(n, k)` numpy array of `rows`, its memory the vector's (no copy).
+pub fn rows<'py, T: numpy::Element, const K: usize>(
+    py: Python<'py>,
+    rows: Vec<[T; K]>,
+) -> PyResult<Bound<'py, PyAny>> {
+    let n = rows.len();
+    let a = Array2::from_shape_vec((n, K), rows.into_flattened())
+        .map_err(|e| crate::error::PoinavError::new_err(e.to_string()))?;
+    Ok(a.into_pyarray(py).into_any())
+}
+
 fn scalar<'a, 'py>(
     py: Python<'py>,
     s: &'a TypedScalar,
@@ -83,7 +95,8 @@ fn scalars<'a, 'py>(
 }
 
 /// A property's value as IfcOpenShell's `get_psets` gives it: a scalar, a list (enumerated
-/// and list values), a `(lower, upper)` tuple (bounded), a dict (complex), the `#id` (others).
+/// and list values; None when unset), a `(lower, upper)` tuple (bounded), a dict (complex),
+/// the `#id` (others).
 pub fn property_value<'a, 'py>(
     py: Python<'py>,
     v: &'a PropertyValue,
@@ -92,6 +105,11 @@ pub fn property_value<'a, 'py>(
     Ok(match v {
         PropertyValue::Single(None) => py.None().into_bound(py),
         PropertyValue::Single(Some(s)) => scalar(py, s, strings)?,
+        // IFC lists have at least one item: an empty one was unset (`$`), None as for
+        // IfcOpenShell.
+        PropertyValue::Enumerated(l) | PropertyValue::List(l) if l.is_empty() => {
+            py.None().into_bound(py)
+        }
         PropertyValue::Enumerated(l) | PropertyValue::List(l) => scalars(py, l, strings)?,
         PropertyValue::Bounded(lo, hi) => {
             let mut f = |s: &'a Option<TypedScalar>| match s {

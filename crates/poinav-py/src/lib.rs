@@ -10,6 +10,7 @@ mod enrichment;
 mod error;
 mod inspect;
 mod model;
+mod navigators;
 mod profile;
 mod simulate;
 

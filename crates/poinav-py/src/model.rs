@@ -1,12 +1,15 @@
 //! `Model`: an IFC file read once (`poinav_ifc::Model`), with its report, storeys, doors,
 //! property sets, element meshes as numpy arrays, enrichment and navigation building.
 
+use std::collections::HashMap;
 use std::path::PathBuf;
 use std::sync::Arc;
 
+use poinav_geom::ElementMesh;
 use poinav_ifc::property::{property_sets, PropertySet};
+use poinav_ifc::EntityId;
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::types::{PyDict, PyString};
 use rayon::prelude::*;
 
 use crate::building::Building;
@@ -39,6 +42,36 @@ pub fn open_bytes(py: Python<'_>, data: Vec<u8>, name: String) -> PyResult<Model
         .map_err(|e| ifc_error(py, &e))
 }
 
+/// The keys of a mesh's dict, made once per call.
+struct MeshKeys<'py> {
+    id: Bound<'py, PyString>,
+    global_id: Bound<'py, PyString>,
+    class: Bound<'py, PyString>,
+    name: Bound<'py, PyString>,
+    storey: Bound<'py, PyString>,
+    storey_id: Bound<'py, PyString>,
+    vertices: Bound<'py, PyString>,
+    triangles: Bound<'py, PyString>,
+    color: Bound<'py, PyString>,
+}
+
+impl<'py> MeshKeys<'py> {
+    fn new(py: Python<'py>) -> Self {
+        let k = |s| PyString::intern(py, s);
+        MeshKeys {
+            id: k("id"),
+            global_id: k("global_id"),
+            class: k("class"),
+            name: k("name"),
+            storey: k("storey"),
+            storey_id: k("storey_id"),
+            vertices: k("vertices"),
+            triangles: k("triangles"),
+            color: k("color"),
+        }
+    }
+}
+
 /// The property sets of every instance of `class` (subtypes included) with a GlobalId.
 fn all_sets(model: &poinav_ifc::Model, class: &str) -> Vec<(String, Vec<PropertySet>)> {
     let products = model.instances_of(class);
@@ -62,6 +95,20 @@ pub fn bench_psets(py: Python<'_>, path: PathBuf) -> PyResult<usize> {
             .map(|(_, s)| s.len())
             .sum()
     }))
+}
+
+/// The Name of each storey the meshes name, by id.
+fn storey_names<'a>(
+    model: &poinav_ifc::Model,
+    meshes: impl Iterator<Item = &'a ElementMesh>,
+) -> HashMap<EntityId, Option<String>> {
+    let mut names = HashMap::new();
+    for s in meshes.filter_map(|m| m.storey) {
+        names
+            .entry(s)
+            .or_insert_with(|| model.entity(s).and_then(|e| e.name()));
+    }
+    names
 }
 
 /// Benchmark helper: meshes the model at `path` in Rust only; returns the triangle count.
@@ -142,6 +189,9 @@ impl Model {
             }
             out.set_item(gid, d)?;
         }
+        drop(strings);
+        // Freeing the library's values needs no GIL.
+        py.detach(move || drop(all));
         Ok(out)
     }
 
@@ -151,32 +201,47 @@ impl Model {
     /// spaces. Elements whose geometry failed are left out (see `mesh_failures`).
     #[pyo3(signature = (spaces = false))]
     fn meshes<'py>(&self, py: Python<'py>, spaces: bool) -> PyResult<Vec<Bound<'py, PyDict>>> {
-        let meshes = py.detach(|| poinav_geom::mesh_model(&self.inner));
-        let mut out = Vec::with_capacity(meshes.elements.len());
-        let list = meshes
-            .elements
-            .into_iter()
-            .chain(spaces.then_some(meshes.spaces).into_iter().flatten());
-        for e in list {
-            let d = PyDict::new(py);
-            d.set_item("id", e.product.0)?;
-            d.set_item("global_id", e.global_id)?;
-            d.set_item("class", e.class)?;
-            d.set_item("name", e.name)?;
-            let storey = e.storey.and_then(|s| self.inner.entity(s));
-            d.set_item("storey", storey.and_then(|s| s.name()))?;
-            d.set_item("storey_id", e.storey.map(|s| s.0))?;
-            let verts: Vec<f64> = e
-                .mesh
-                .positions
-                .iter()
-                .flat_map(|p| [p.x, p.y, p.z])
+        // Meshing and the vertices' flat rows in parallel without the GIL; with it, only O(1)
+        // work per element: the vectors become the arrays' memory, not copied.
+        let (elements, storeys) = py.detach(|| {
+            let meshes = poinav_geom::mesh_model(&self.inner);
+            let list: Vec<ElementMesh> = meshes
+                .elements
+                .into_iter()
+                .chain(spaces.then_some(meshes.spaces).into_iter().flatten())
                 .collect();
-            let tris: Vec<u32> = e.mesh.triangles.into_iter().flatten().collect();
-            d.set_item("vertices", convert::array2(py, verts, 3)?)?;
-            d.set_item("triangles", convert::array2(py, tris, 3)?)?;
-            d.set_item("color", e.color)?;
+            let elements: Vec<(ElementMesh, Vec<[f64; 3]>)> = list
+                .into_par_iter()
+                .map(|mut e| {
+                    let positions = std::mem::take(&mut e.mesh.positions);
+                    (e, positions.iter().map(|p| p.to_array()).collect())
+                })
+                .collect();
+            let storeys = storey_names(&self.inner, elements.iter().map(|(e, _)| e));
+            (elements, storeys)
+        });
+        let k = MeshKeys::new(py);
+        let mut out = Vec::with_capacity(elements.len());
+        let mut strings = convert::Strings::default();
+        for (e, _) in &elements {
+            let d = PyDict::new(py);
+            d.set_item(&k.id, e.product.0)?;
+            d.set_item(&k.global_id, &e.global_id)?;
+            d.set_item(&k.class, strings.get(py, &e.class))?;
+            d.set_item(&k.name, &e.name)?;
+            let storey = e.storey.and_then(|s| storeys.get(&s)?.as_deref());
+            d.set_item(&k.storey, storey.map(|n| strings.get(py, n)))?;
+            d.set_item(&k.storey_id, e.storey.map(|s| s.0))?;
+            d.set_item(&k.vertices, py.None())?;
+            d.set_item(&k.triangles, py.None())?;
+            d.set_item(&k.color, e.color)?;
             out.push(d);
+        }
+        drop(strings);
+        // The vectors move into the arrays (the loop above borrowed the names).
+        for (d, (e, vertices)) in out.iter().zip(elements) {
+            d.set_item(&k.vertices, convert::rows(py, vertices)?)?;
+            d.set_item(&k.triangles, convert::rows(py, e.mesh.triangles)?)?;
         }
         Ok(out)
     }

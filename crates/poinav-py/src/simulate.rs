@@ -64,9 +64,12 @@ fn columns(trace: &[u8]) -> Result<Columns, String> {
 /// Runs `variant` of the scenario (a file, or TOML text with `text=True`; relative paths are
 /// resolved from `base`, default the current folder). Returns a dict: `summary` (as
 /// summary.json), `pass`, `poi` (the POI records at the end), `trace` (numpy columns, when
-/// `trace`), and `outputs` (files written into `output`, when given).
+/// `trace`), and `outputs` (files written into `output`, when given). With `stream` (and
+/// `output`) the trace is not kept: it goes to `output/trace.jsonl` as the steps are taken
+/// (`poinav simulate`'s way; memory does not grow with the run), named by `trace_path`.
 #[pyfunction]
-#[pyo3(signature = (scenario, variant = None, text = false, base = None, output = None, trace = true))]
+#[pyo3(signature = (scenario, variant = None, text = false, base = None, output = None, trace = true, stream = false))]
+#[allow(clippy::too_many_arguments)]
 pub fn simulate<'py>(
     py: Python<'py>,
     scenario: String,
@@ -75,7 +78,13 @@ pub fn simulate<'py>(
     base: Option<PathBuf>,
     output: Option<PathBuf>,
     trace: bool,
+    stream: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
+    if stream && output.is_none() {
+        return Err(PoinavError::new_err(
+            "stream=True writes the trace into `output`: pass output=",
+        ));
+    }
     let scenario = if text {
         let dir = base.unwrap_or_else(|| PathBuf::from("."));
         Scenario::from_toml(&scenario, "<scenario>", &dir)
@@ -95,17 +104,27 @@ pub fn simulate<'py>(
         let converter = poinav_sim::ifc_floor::converter();
         let building =
             poinav_sim::prepare(&scenario, variant.as_deref(), Some(&converter)).map_err(to_py)?;
-        let outcome = if trace {
-            poinav_sim::run(&scenario, variant.as_deref(), &building.floor)
-        } else {
-            poinav_sim::run_with(&scenario, variant.as_deref(), &building.floor, None)
-        }
-        .map_err(to_py)?;
-        let written = match &output {
-            Some(dir) => {
-                poinav_sim::write_outputs(dir, &outcome, &building.floor).map_err(to_py)?
+        let (outcome, written) = match &output {
+            Some(dir) if stream => {
+                let every = trace.then_some(1);
+                poinav_sim::run_into(dir, &scenario, variant.as_deref(), &building.floor, every)
+                    .map_err(to_py)?
             }
-            None => Vec::new(),
+            _ => {
+                let outcome = if trace {
+                    poinav_sim::run(&scenario, variant.as_deref(), &building.floor)
+                } else {
+                    poinav_sim::run_with(&scenario, variant.as_deref(), &building.floor, None)
+                }
+                .map_err(to_py)?;
+                let written = match &output {
+                    Some(dir) => {
+                        poinav_sim::write_outputs(dir, &outcome, &building.floor).map_err(to_py)?
+                    }
+                    None => Vec::new(),
+                };
+                (outcome, written)
+            }
         };
         let cols = match &outcome.trace {
             Some(t) => Some(columns(t).map_err(PoinavError::new_err)?),
@@ -146,6 +165,10 @@ pub fn simulate<'py>(
         t.set_item("omega_deg_s", numpy::PyArray1::from_vec(py, c.omega_deg_s))?;
         t.set_item("ray_m", convert::array2(py, c.rays, 5)?)?;
         d.set_item("trace", t)?;
+    }
+    if let (true, true, Some(dir)) = (stream, trace, &output) {
+        let path = dir.join(poinav_sim::output::TRACE);
+        d.set_item("trace_path", path.display().to_string())?;
     }
     let outputs: Vec<String> = written.iter().map(|p| p.display().to_string()).collect();
     d.set_item("outputs", outputs)?;

@@ -47,6 +47,47 @@ def test_route_equals_cli(fzk_building):
     assert 2.0 < mine["length_m"] < 30.0
 
 
+def test_routes_reuse_the_prepared_navigator(fzk):
+    b = fzk.building()
+    assert b.navigators_built == 0
+    first = b.route("outside", "Wohnen")
+    assert b.navigators_built == 1
+    # The second route, and the other way, rasterise nothing and answer the same.
+    assert b.route("outside", "Wohnen") == first
+    back = b.route("Wohnen", "outside")
+    assert back["length_m"] == pytest.approx(first["length_m"], abs=0.5)
+    assert b.navigators_built == 1
+    # The grid of a prepared storey is the route's grid, equal to a fresh building's.
+    fresh = fzk.building().grid("Erdgeschoss")
+    kept = b.grid("Erdgeschoss")
+    assert b.navigators_built == 1
+    assert (np.asarray(kept) == np.asarray(fresh)).all()
+    assert (kept.clearance_m == fresh.clearance_m).all() and kept.origin == fresh.origin
+    # Other options: another navigator, kept beside the first.
+    coarse = b.route("outside", "Wohnen", resolution=0.1)
+    assert b.navigators_built == 2
+    assert coarse["length_m"] == pytest.approx(first["length_m"], abs=0.5)
+    assert b.route("outside", "Wohnen") == first
+    assert b.route("outside", "Wohnen", resolution=0.1) == coarse
+    assert b.navigators_built == 2
+    # No route is an answer of the kept navigator too.
+    with pytest.raises(poinav.NoRouteError):
+        b.route("outside", "Galerie")
+    assert b.navigators_built == 2
+
+
+def test_routes_from_threads_share_one_navigator(fzk):
+    # The GIL is released while routing: threads wait for the one navigator, none rebuilds it.
+    from concurrent.futures import ThreadPoolExecutor
+
+    b = fzk.building()
+    with ThreadPoolExecutor(4) as pool:
+        routes = list(pool.map(lambda _: b.route("outside", "Wohnen"), range(8)))
+    assert b.navigators_built == 1
+    assert all(r == routes[0] for r in routes)
+    assert routes[0]["length_m"] == pytest.approx(fzk.building().route("outside", "Wohnen")["length_m"])
+
+
 def test_no_route_and_unknown_place(fzk_building):
     with pytest.raises(poinav.NoRouteError):
         fzk_building.route("outside", "Galerie")  # upstairs, by a spiral stair only

@@ -4,7 +4,7 @@ door-width sweep of the doorway scenario with its flip widths."""
 from pathlib import Path
 
 import pytest
-from conftest import PROFILES, corpus_files
+from conftest import PROFILES, cli_json, corpus_files
 
 distributed = pytest.importorskip("distributed")
 import poinav.dask  # noqa: E402
@@ -19,10 +19,10 @@ def client():
     cluster.close()
 
 
-def test_audit_corpus(client):
-    # The synthetic 18 MB merge (a throughput file of overlapping buildings) alone takes over a
-    # minute in the debug wheel; the other 14 models are audited.
-    files = [f for f in corpus_files() if not f.name.startswith("synthetic-")]
+def test_audit_corpus(client, tmp_path):
+    # Every model, the 18 MB synthetic merge too (about 2 s of CPU in the ci profile's wheel).
+    files = corpus_files()
+    assert len(files) == 15
     # One profile keeps the test short (several profiles per file: test_building's audit).
     table = poinav.dask.audit_files(client, files, profiles=["paper"])
     assert len(table) == len(files)
@@ -38,6 +38,16 @@ def test_audit_corpus(client):
     office = by.loc[str(next(f for f in files if f.name == "office-a.ifc"))]
     assert office["door_passages"] == 104 and office["full"] == 99 and office["restricted"] == 5
     assert office["spaces_reachable"] == 99
+    # The synthetic merge's row counts what `poinav audit --json` reports.
+    synthetic = next(f for f in files if f.name.startswith("synthetic-"))
+    cli = cli_json("audit", synthetic, "-o", tmp_path / "report.html", "--json")["profiles"][0]
+    statuses = [d["status"] for d in cli["doors"]]
+    row = by.loc[str(synthetic)]
+    assert row["door_passages"] == len(statuses) > 300
+    assert row[["full", "restricted", "blocked", "pending"]].tolist() == [
+        statuses.count(s) for s in ("FULL_ACCESS", "RESTRICTED", "BLOCKED", "PENDING_VALIDATION")]
+    assert row["spaces_reachable"] == sum(1 for s in cli["spaces"] if s["reachable"]) > 300
+    assert row["spaces_unreachable"] == sum(1 for s in cli["spaces"] if not s["reachable"])
     # The same rows without a cluster, the file sent as bytes.
     profiles = ["paper", PROFILES / "wide-cart.toml"]
     here = poinav.dask.audit_files(None, [files[0]], profiles=profiles, ship_bytes=True)

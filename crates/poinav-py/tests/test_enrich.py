@@ -49,6 +49,13 @@ def test_write_reads_back_in_ifcopenshell(fzk, tmp_path):
         assert one(psets["Pset_POI_Classification"]["POI_Category"]) == row.POI_Category
         doors += 1
     assert doors == 5
+    # poinav reads the sets it wrote back as IfcOpenShell does, value for value.
+    back = poinav.open(out).psets("IfcDoor")
+    assert len(back) == 5
+    for gid, sets in back.items():
+        theirs = ifcopenshell.util.element.get_psets(f.by_guid(gid), psets_only=True)
+        for name in ("Pset_RobotAccessibility", "Pset_POI_Classification"):
+            assert sets[name] == theirs[name], (gid, name)
     statuses = sorted(df[df["IfcClass"] == "IfcDoor"]["AccessibilityStatus"])
     assert statuses == ["FULL_ACCESS"] * 2 + ["RESTRICTED"] * 3
     # The input is never the output.

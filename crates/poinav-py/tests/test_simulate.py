@@ -69,3 +69,17 @@ def test_simulate_errors(tmp_path):
         poinav.simulate(tmp_path / "missing.toml")
     with pytest.raises(poinav.PoinavError, match="<scenario>:2"):
         poinav.simulate('name = "x"\nduration_s = "long"\n')
+
+
+def test_stream_trace_to_file(tmp_path):
+    kept = poinav.simulate(DOORWAY, "door-0.80", output=tmp_path / "kept")
+    streamed = poinav.simulate(DOORWAY, "door-0.80", output=tmp_path / "streamed", stream=True)
+    path = tmp_path / "streamed" / "trace.jsonl"
+    assert "trace" not in streamed and streamed["trace_path"] == str(path)
+    # The same lines as the trace kept in memory and written at the end.
+    assert path.read_bytes() == (tmp_path / "kept" / "trace.jsonl").read_bytes()
+    assert len(path.read_bytes().splitlines()) == len(kept["trace"]["t"]) == kept["summary"]["records"]
+    assert streamed["summary"] == kept["summary"] and streamed["pass"] is True
+    assert sorted(streamed["outputs"]) == sorted(p.replace("kept", "streamed") for p in kept["outputs"])
+    with pytest.raises(poinav.PoinavError, match="output="):
+        poinav.simulate(DOORWAY, "door-0.80", stream=True)

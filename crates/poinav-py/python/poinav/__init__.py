@@ -58,7 +58,7 @@ def open(source: Union[PathLike, bytes, bytearray, memoryview, Any], name: Optio
 
 def simulate(scenario: Union[PathLike, str], variant: Optional[str] = None, *,
              output: Optional[PathLike] = None, trace: bool = True,
-             base: Optional[PathLike] = None) -> Dict[str, Any]:
+             base: Optional[PathLike] = None, stream: bool = False) -> Dict[str, Any]:
     """Run one variant of a scenario (``poinav simulate``).
 
     ``scenario`` is a scenario file, or its TOML text (relative paths then resolve from
@@ -67,6 +67,8 @@ def simulate(scenario: Union[PathLike, str], variant: Optional[str] = None, *,
     end: roles, ``status``, ``method``), ``trace`` (numpy columns ``step``, ``t``, ``robot``
     (index into ``robots``), ``xy`` (n, 2), ``heading_deg``, ``speed``, ``omega_deg_s``,
     ``ray_m`` (n, 5)) unless ``trace=False``, and ``outputs`` (files written into ``output``).
+    With ``stream=True`` (and ``output``) the trace is written to ``output/trace.jsonl`` as the
+    steps are taken instead of kept in memory (long runs); ``trace_path`` names it.
     """
     text = isinstance(scenario, str) and "\n" in scenario
     return _native.simulate(
@@ -76,4 +78,5 @@ def simulate(scenario: Union[PathLike, str], variant: Optional[str] = None, *,
         None if base is None else os.fspath(base),
         None if output is None else os.fspath(output),
         trace,
+        stream,
     )
