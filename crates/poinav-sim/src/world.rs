@@ -159,7 +159,16 @@ pub struct World {
     robots: Rows,
     robot_pairs: Vec<(u32, u32)>,
     boxes: Vec<Obb>,
+    /// Per robot box: the radius of a circle around it, a little larger than the box's own
+    /// (see [`reach`]), for a cheap test before the exact ray test.
+    reach: Vec<f64>,
     slack: f64,
+}
+
+/// A radius safely above `b`'s circumradius: a ray missing this circle (or entering it beyond
+/// the best hit so far) misses the box or hits it later, whatever the exact test's rounding.
+fn reach(b: &Obb) -> f64 {
+    (b.hl * b.hl + b.hw * b.hw).sqrt() * (1.0 + 1e-9) + 1e-9
 }
 
 impl World {
@@ -195,6 +204,7 @@ impl World {
             robots: Rows::default(),
             robot_pairs: Vec::new(),
             boxes: Vec::new(),
+            reach: Vec::new(),
             slack,
         };
         let mut pairs = Vec::new();
@@ -239,6 +249,8 @@ impl World {
     pub fn set_robots(&mut self, boxes: &[Obb]) {
         self.boxes.clear();
         self.boxes.extend_from_slice(boxes);
+        self.reach.clear();
+        self.reach.extend(boxes.iter().map(reach));
         self.refresh_robots();
     }
 
@@ -257,6 +269,7 @@ impl World {
     /// Moves robot `i`'s box within the step (its grid cells are refreshed next step; queries
     /// are widened by the slack).
     pub fn update_robot(&mut self, i: usize, b: Obb) {
+        self.reach[i] = reach(&b);
         self.boxes[i] = b;
     }
 
@@ -344,7 +357,15 @@ impl World {
                 if Some(r) == skip {
                     continue;
                 }
-                if let Some(t) = self.boxes[r as usize].ray(o, dir) {
+                // The circle around the box first (`dir` is a unit vector): missed, or entered
+                // no nearer than the best hit, the box cannot give a nearer hit.
+                let b = &self.boxes[r as usize];
+                let rel = b.c - o;
+                let rad = self.reach[r as usize];
+                if rel.perp_dot(dir).abs() > rad || rel.dot(dir) - rad >= best {
+                    continue;
+                }
+                if let Some(t) = b.ray(o, dir) {
                     if t < best {
                         best = t;
                         target = Target::Robot(r);
