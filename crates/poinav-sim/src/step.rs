@@ -287,6 +287,10 @@ pub struct Sim<'f> {
     perceptions: Vec<Perception>,
     /// Every move planned again at its commit (the plain sequential loop; tests compare it).
     sequential_moves: bool,
+    /// Per robot: the heading (its bits) its ray directions were last computed for, and
+    /// those directions (five sines and cosines saved per robot and step while it keeps its
+    /// heading).
+    ray_dirs: Vec<(Option<u64>, [DVec2; 5])>,
 }
 
 fn zone_index(floor: &Floor, name: &str) -> Option<u32> {
@@ -419,6 +423,7 @@ impl<'f> Sim<'f> {
             readings: Vec::with_capacity(n),
             perceptions: Vec::with_capacity(n),
             sequential_moves: false,
+            ray_dirs: vec![(None, [DVec2::ZERO; 5]); n],
         };
         let mut sc = Scratch::default();
         for i in 0..n {
@@ -530,9 +535,17 @@ impl<'f> Sim<'f> {
         let world = &self.world;
         self.robots
             .par_iter()
+            .zip(self.ray_dirs.par_iter_mut())
             .enumerate()
             .with_min_len(8)
-            .map(|(i, r)| sensor::sense(world, i, r.state.pos, r.state.heading, RANGE_M))
+            .map(|(i, (r, (key, dirs)))| {
+                let h = r.state.heading;
+                if *key != Some(h.to_bits()) {
+                    *key = Some(h.to_bits());
+                    *dirs = sensor::directions(h);
+                }
+                sensor::sense_along(world, i, r.state.pos, *dirs, RANGE_M)
+            })
             .collect_into_vec(&mut self.readings);
         self.perceive_all(t);
         self.current.clear();

@@ -121,23 +121,34 @@ impl Rows {
     /// them), placed by counting (no sort: the robots' grid is rebuilt every step); each cell
     /// lists its items in ascending order.
     fn build(cells: usize, pairs: &[(u32, u32)]) -> Rows {
-        let mut start = vec![0u32; cells + 1];
+        let mut rows = Rows::default();
+        rows.rebuild(cells, pairs, &mut Vec::new());
+        rows
+    }
+
+    /// [`Rows::build`] in the memory of these rows (`next` is scratch space): the robots' grid
+    /// is rebuilt every step.
+    fn rebuild(&mut self, cells: usize, pairs: &[(u32, u32)], next: &mut Vec<u32>) {
+        let start = &mut self.start;
+        start.clear();
+        start.resize(cells + 1, 0);
         for &(c, _) in pairs {
             start[c as usize + 1] += 1;
         }
         for c in 0..cells {
             start[c + 1] += start[c];
         }
-        let mut next = start.clone();
-        let mut items = vec![0u32; pairs.len()];
+        next.clear();
+        next.extend_from_slice(&start[..cells]);
+        let items = &mut self.items;
+        items.clear();
+        items.resize(pairs.len(), 0);
         for &(c, item) in pairs {
             let k = &mut next[c as usize];
             items[*k as usize] = item;
             *k += 1;
         }
-        let rows = Rows { start, items };
-        debug_assert!((0..cells).all(|c| rows.cell(c).is_sorted()));
-        rows
+        debug_assert!((0..cells).all(|c| self.cell(c).is_sorted()));
     }
 
     #[inline]
@@ -158,6 +169,8 @@ pub struct World {
     statics: Rows,
     robots: Rows,
     robot_pairs: Vec<(u32, u32)>,
+    /// Scratch space of the robots' grid rebuild.
+    robot_next: Vec<u32>,
     boxes: Vec<Obb>,
     /// Per robot box: the radius of a circle around it, a little larger than the box's own
     /// (see [`reach`]), for a cheap test before the exact ray test.
@@ -203,6 +216,7 @@ impl World {
             statics: Rows::default(),
             robots: Rows::default(),
             robot_pairs: Vec::new(),
+            robot_next: Vec::new(),
             boxes: Vec::new(),
             reach: Vec::new(),
             slack,
@@ -262,7 +276,8 @@ impl World {
             let (lo, hi) = b.aabb();
             self.cover(lo, hi, |c| pairs.push((c, i as u32)));
         }
-        self.robots = Rows::build(self.nx * self.ny, &pairs);
+        self.robots
+            .rebuild(self.nx * self.ny, &pairs, &mut self.robot_next);
         self.robot_pairs = pairs;
     }
 
