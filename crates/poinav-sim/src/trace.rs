@@ -650,6 +650,21 @@ mod tests {
             let mut sim = crate::Sim::new(&floor, &setups, crate::SimOptions::default()).unwrap();
             let names = sim.names();
             let writer = LineWriter::new(&names);
+            // The same names made longer than a fixed piece holds (and not ASCII).
+            let mut long = names.clone();
+            for s in long
+                .robots
+                .iter_mut()
+                .chain(&mut long.robot_ids)
+                .chain(&mut long.obstacles)
+                .chain(&mut long.doors)
+                .chain(&mut long.zones)
+            {
+                s.push_str(&" \u{fc}ber-lang \"x\"".repeat(6));
+            }
+            let long_writer = LineWriter::new(&long);
+            assert!(matches!(writer.robots[0], Short::Fixed(..)));
+            assert!(matches!(long_writer.robots[0], Short::Long(_)));
             let mut seen = 0;
             for k in 0..=240 {
                 sim.tick(k < 240);
@@ -682,6 +697,11 @@ mod tests {
                         let mut via_names = String::from("prefix ");
                         line_into(&mut via_names, v, 1.0 / 60.0, &names, &mine);
                         assert_eq!(via_names, want);
+                        let mut fast = Vec::new();
+                        long_writer.line_into(&mut fast, v, 1.0 / 60.0, &mine);
+                        let mut want = String::new();
+                        reference_line(&mut want, v, 1.0 / 60.0, &long, &mine);
+                        assert_eq!(String::from_utf8(fast).unwrap(), want);
                         lines += 1;
                     }
                     with_events += usize::from(!mine.is_empty());
