@@ -181,9 +181,11 @@ impl Region {
         self.hi = self.hi.max(hi);
     }
 
-    /// True when the box `lo`-`hi` comes within [`REACH_MARGIN`] of the region.
+    /// True when the box `lo`-`hi` comes within twice [`REACH_MARGIN`] of the region: twice,
+    /// so that a box that does not is farther than the margin from the region even after the
+    /// rounding of its sides' end points (every edge of it is [`apart`] from every swept box).
     fn meets(&self, lo: DVec2, hi: DVec2) -> bool {
-        let m = REACH_MARGIN;
+        let m = 2.0 * REACH_MARGIN;
         lo.x <= self.hi.x + m
             && hi.x >= self.lo.x - m
             && lo.y <= self.hi.y + m
