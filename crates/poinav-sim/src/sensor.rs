@@ -39,7 +39,12 @@ pub struct Reading {
 
 /// Casts the five rays of robot `me` from `pos` at `heading`.
 pub fn sense(world: &World, me: usize, pos: DVec2, heading: f64, range: f64) -> Reading {
-    let dirs = directions(heading);
+    sense_along(world, me, pos, directions(heading), range)
+}
+
+/// Casts the five rays of robot `me` from `pos` along `dirs` ([`directions`] of its heading,
+/// kept while the heading stays the same).
+pub fn sense_along(world: &World, me: usize, pos: DVec2, dirs: [DVec2; 5], range: f64) -> Reading {
     Reading {
         rays: dirs.map(|d| world.cast(pos, d, range, Some(me as u32))),
         dirs,

@@ -134,6 +134,8 @@ struct Move {
     travelled: f64,
     footprint: Obb,
     touched: Vec<Owner>,
+    /// Where the move tested its edges.
+    looked: Region,
 }
 
 /// Candidate edges near box `b` widened by `reach`: static edges and other robots' sides.
@@ -153,10 +155,63 @@ fn gather(world: &World, me: usize, b: Obb, reach: f64, sc: &mut Scratch) {
     }
 }
 
-/// The deepest overlap of box `b` with `edges`.
-fn deepest(edges: &[(DVec2, DVec2, Owner)], b: &Obb) -> Option<(f64, DVec2, Owner)> {
+/// How far a move's tests may reach beyond the boxes they test, metres: a margin over the
+/// rounding of the exact tests (about 1e-13 m at building coordinates), so an edge whose
+/// bounding box lies farther than this from every box a move tested cannot have touched it.
+const REACH_MARGIN: f64 = 1e-6;
+
+/// The axis-aligned box holding every box a move tested edges against (turned footprints,
+/// push-outs, the swept boxes of its translations): an edge apart from it played no part in
+/// the move, so another robot's box moving from one place to another, both apart from it,
+/// leaves the move as it was.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Region {
+    lo: DVec2,
+    hi: DVec2,
+}
+
+impl Region {
+    const EMPTY: Region = Region {
+        lo: DVec2::splat(f64::INFINITY),
+        hi: DVec2::splat(f64::NEG_INFINITY),
+    };
+
+    fn add(&mut self, lo: DVec2, hi: DVec2) {
+        self.lo = self.lo.min(lo);
+        self.hi = self.hi.max(hi);
+    }
+
+    /// True when the box `lo`-`hi` comes within twice [`REACH_MARGIN`] of the region: twice,
+    /// so that a box that does not is farther than the margin from the region even after the
+    /// rounding of its sides' end points (every edge of it is [`apart`] from every swept box).
+    fn meets(&self, lo: DVec2, hi: DVec2) -> bool {
+        let m = 2.0 * REACH_MARGIN;
+        lo.x <= self.hi.x + m
+            && hi.x >= self.lo.x - m
+            && lo.y <= self.hi.y + m
+            && hi.y >= self.lo.y - m
+    }
+}
+
+/// True when the bounding box of edge `a`-`e` lies more than [`REACH_MARGIN`] from `lo`-`hi`.
+#[inline]
+fn apart(a: DVec2, e: DVec2, lo: DVec2, hi: DVec2) -> bool {
+    let m = REACH_MARGIN;
+    a.x.max(e.x) < lo.x - m
+        || a.x.min(e.x) > hi.x + m
+        || a.y.max(e.y) < lo.y - m
+        || a.y.min(e.y) > hi.y + m
+}
+
+/// The deepest overlap of box `b` with `edges`; `b`'s bounds are added to `looked`.
+fn deepest(
+    edges: &[(DVec2, DVec2, Owner)],
+    b: &Obb,
+    looked: &mut Region,
+) -> Option<(f64, DVec2, Owner)> {
     let corners = b.corners();
     let (lo, hi) = b.aabb();
+    looked.add(lo, hi);
     let mut best: Option<(f64, DVec2, Owner)> = None;
     for &(a, e, o) in edges {
         // Bounding boxes apart: no overlap (the exact test is the costly part).
@@ -177,14 +232,14 @@ fn deepest(edges: &[(DVec2, DVec2, Owner)], b: &Obb) -> Option<(f64, DVec2, Owne
 }
 
 /// Pushes `b` out of what it overlaps (a few iterations); `None` when it cannot.
-fn resolve(edges: &[(DVec2, DVec2, Owner)], mut b: Obb) -> Option<DVec2> {
+fn resolve(edges: &[(DVec2, DVec2, Owner)], mut b: Obb, looked: &mut Region) -> Option<DVec2> {
     for _ in 0..4 {
-        match deepest(edges, &b) {
+        match deepest(edges, &b, looked) {
             None => return Some(b.c),
             Some((d, n, _)) => b.c += n * (d + SKIN),
         }
     }
-    deepest(edges, &b).is_none().then_some(b.c)
+    deepest(edges, &b, looked).is_none().then_some(b.c)
 }
 
 /// What a finished run leaves.
@@ -232,6 +287,12 @@ pub struct Sim<'f> {
     arrived: Vec<bool>,
     readings: Vec<Reading>,
     perceptions: Vec<Perception>,
+    /// Every move planned again at its commit (the plain sequential loop; tests compare it).
+    sequential_moves: bool,
+    /// Per robot: the heading (its bits) its ray directions were last computed for, and
+    /// those directions (five sines and cosines saved per robot and step while it keeps its
+    /// heading).
+    ray_dirs: Vec<(Option<u64>, [DVec2; 5])>,
 }
 
 fn zone_index(floor: &Floor, name: &str) -> Option<u32> {
@@ -363,12 +424,15 @@ impl<'f> Sim<'f> {
             arrived: vec![false; n],
             readings: Vec::with_capacity(n),
             perceptions: Vec::with_capacity(n),
+            sequential_moves: false,
+            ray_dirs: vec![(None, [DVec2::ZERO; 5]); n],
         };
         let mut sc = Scratch::default();
         for i in 0..n {
             let b = sim.robots[i].footprint();
             gather(&sim.world, i, b, 0.0, &mut sc);
-            if let Some((_, _, owner)) = deepest(&sc.edges, &b) {
+            let mut looked = Region::EMPTY;
+            if let Some((_, _, owner)) = deepest(&sc.edges, &b, &mut looked) {
                 return Err(SimError::Setup {
                     robot: sim.robots[i].name.clone(),
                     message: format!(
@@ -473,9 +537,17 @@ impl<'f> Sim<'f> {
         let world = &self.world;
         self.robots
             .par_iter()
+            .zip(self.ray_dirs.par_iter_mut())
             .enumerate()
             .with_min_len(8)
-            .map(|(i, r)| sensor::sense(world, i, r.state.pos, r.state.heading, RANGE_M))
+            .map(|(i, (r, (key, dirs)))| {
+                let h = r.state.heading;
+                if *key != Some(h.to_bits()) {
+                    *key = Some(h.to_bits());
+                    *dirs = sensor::directions(h);
+                }
+                sensor::sense_along(world, i, r.state.pos, *dirs, RANGE_M)
+            })
             .collect_into_vec(&mut self.readings);
         self.perceive_all(t);
         self.current.clear();
@@ -650,8 +722,8 @@ impl<'f> Sim<'f> {
 
     /// Moves every robot: computed in parallel against the boxes at the start of the step,
     /// committed in index order; a robot whose neighbours (the robots its move looked at)
-    /// already moved in this step is moved again against their new boxes, so the result is
-    /// the sequential one.
+    /// already moved in this step, from or to where its move tested edges ([`Region`]), is
+    /// moved again against their new boxes, so the result is the sequential one.
     fn move_all(&mut self, actions: &[Command], t: f64) {
         let this = &*self;
         let guesses: Vec<(Move, Near)> = (0..actions.len())
@@ -662,16 +734,28 @@ impl<'f> Sim<'f> {
                 (m, Near::of(&sc.robots))
             })
             .collect();
-        let mut moved = vec![false; actions.len()];
+        // Per robot already moved in this step: its box before the move.
+        let mut moved: Vec<Option<Obb>> = vec![None; actions.len()];
         let mut sc = Scratch::default();
         for (i, (guess, near)) in guesses.into_iter().enumerate() {
-            let m = if near.as_slice().iter().any(|&j| moved[j as usize]) {
+            // Redone only when a neighbour that moved was, or now is, where the move looked.
+            let redo = self.sequential_moves
+                || near.as_slice().iter().any(|&j| {
+                    moved[j as usize].is_some_and(|old| {
+                        let (lo, hi) = old.aabb();
+                        let (nlo, nhi) = self.world.robot(j as usize).aabb();
+                        guess.looked.meets(lo, hi) || guess.looked.meets(nlo, nhi)
+                    })
+                });
+            let m = if redo {
                 self.plan_move(i, actions[i], &mut sc)
             } else {
                 guess
             };
             let before = *self.world.robot(i);
-            moved[i] = m.footprint != before;
+            if m.footprint != before {
+                moved[i] = Some(before);
+            }
             self.commit_move(i, m, t);
         }
     }
@@ -692,6 +776,7 @@ impl<'f> Sim<'f> {
             sc,
         );
         let edges = &sc.edges;
+        let mut looked = Region::EMPTY;
         let mut heading = wrap_angle(st.heading + omega * dt);
         let mut pos = st.pos;
         // The box's axis at `heading` (its sine and cosine computed once: every box below is
@@ -706,7 +791,7 @@ impl<'f> Sim<'f> {
                 hl,
                 hw,
             };
-            match resolve(edges, turned) {
+            match resolve(edges, turned, &mut looked) {
                 Some(p) => {
                     pos = p;
                     dir = turned_dir;
@@ -724,9 +809,17 @@ impl<'f> Sim<'f> {
             if rem.length_squared() < 1e-24 {
                 break;
             }
-            let corners = at(pos, dir).corners();
+            let moving = at(pos, dir);
+            let corners = moving.corners();
+            // Only edges near the swept box can be hit (the sweep's contacts lie in it).
+            let (lo, hi) = moving.aabb();
+            let (lo, hi) = (lo.min(lo + rem), hi.max(hi + rem));
+            looked.add(lo, hi);
             let mut hit: Option<(f64, DVec2, Owner)> = None;
             for &(a, b, o) in edges {
+                if apart(a, b, lo, hi) {
+                    continue;
+                }
                 if let Some((s, n)) = sweep_segment(&corners, rem, a, b) {
                     if hit.is_none_or(|(hs, _, _)| s < hs) {
                         hit = Some((s, n, o));
@@ -751,7 +844,7 @@ impl<'f> Sim<'f> {
                 }
             }
         }
-        if deepest(edges, &at(pos, dir)).is_some() {
+        if deepest(edges, &at(pos, dir), &mut looked).is_some() {
             pos = st.pos;
             heading = st.heading;
             dir = start.ax;
@@ -770,6 +863,7 @@ impl<'f> Sim<'f> {
             travelled: moved.length(),
             footprint: at(pos, dir),
             touched,
+            looked,
         }
     }
 

@@ -1,6 +1,7 @@
 //! Unit tests of the step: the fixed 60 Hz clock, the speed limits of a move, no tunnelling
-//! through a thin wall at the top speed, sliding, contacts reported once per touch, and a start
-//! overlapping a wall refused.
+//! through a thin wall at the top speed, sliding, contacts reported once per touch, a start
+//! overlapping a wall refused, and the parallel moves (kept where no moved neighbour came near)
+//! equal to planning every move in order.
 
 use super::*;
 use crate::controller::ControllerSpec;
@@ -131,5 +132,90 @@ fn a_start_overlapping_a_wall_is_refused() {
     assert!(
         err.to_string().contains("starts overlapping IfcWall thin"),
         "{err}"
+    );
+}
+
+#[test]
+fn parallel_moves_equal_moves_planned_one_after_the_other() {
+    // A dense crowd in a walled hall with columns: robots 1.2 m apart (0.4-0.5 m gaps) under
+    // pseudo-random commands, so they push, slide and touch each other and the walls.
+    let mut floor = open_floor(None);
+    for (id, r) in [
+        ("s", rect(-10.2, -5.2, 10.2, -5.0)),
+        ("n", rect(-10.2, 5.0, 10.2, 5.2)),
+        ("w", rect(-10.2, -5.0, -10.0, 5.0)),
+        ("e", rect(10.0, -5.0, 10.2, 5.0)),
+        ("c1", rect(-4.3, -0.3, -3.7, 0.3)),
+        ("c2", rect(3.7, -0.3, 4.3, 0.3)),
+    ] {
+        floor.obstacles.push(wall(id, r));
+    }
+    let mut setups = Vec::new();
+    for gy in 0..7 {
+        for gx in 0..15 {
+            let p = DVec2::new(-8.4 + gx as f64 * 1.2, -3.6 + gy as f64 * 1.2);
+            if (p.x.abs() - 4.0).abs() < 1.0 && p.y.abs() < 1.0 {
+                continue;
+            }
+            let name = format!("R{}", setups.len());
+            setups.push(setup(
+                &name,
+                p,
+                (gx * 37 + gy * 61) as f64,
+                ControllerSpec::Idle,
+            ));
+        }
+    }
+    let n = setups.len();
+    let mut parallel = Sim::new(&floor, &setups, SimOptions::default()).unwrap();
+    let mut sequential = Sim::new(&floor, &setups, SimOptions::default()).unwrap();
+    sequential.sequential_moves = true;
+    let mut seed = 0x2545_F491_4F6C_DD1Du64;
+    let mut cmds = vec![Command { v: 0.0, omega: 0.0 }; n];
+    for step in 0..240 {
+        if step % 12 == 0 {
+            for c in &mut cmds {
+                seed ^= seed << 13;
+                seed ^= seed >> 7;
+                seed ^= seed << 17;
+                let (a, b) = (
+                    (seed & 0xffff) as f64 / 65535.0,
+                    (seed >> 48) as f64 / 65535.0,
+                );
+                *c = Command {
+                    v: -1.0 + 6.0 * a,
+                    omega: -3.0 + 6.0 * b,
+                };
+            }
+        }
+        for sim in [&mut parallel, &mut sequential] {
+            sim.world.refresh_robots();
+            sim.move_all(&cmds, sim.time());
+            sim.step += 1;
+        }
+        for (a, b) in parallel.robots.iter().zip(&sequential.robots) {
+            let (a, b) = (a.state, b.state);
+            let bits = |s: crate::robot::RobotState| {
+                [
+                    s.pos.x,
+                    s.pos.y,
+                    s.heading,
+                    s.speed,
+                    s.actual_speed,
+                    s.omega,
+                    s.odometer,
+                ]
+                .map(f64::to_bits)
+            };
+            assert_eq!(bits(a), bits(b), "step {step}");
+        }
+    }
+    let (a, b) = (contacts(&parallel), contacts(&sequential));
+    assert_eq!(a, b);
+    let robots = a.iter().filter(|c| c.2 == "Robot").count();
+    assert!(
+        robots >= 20 && a.len() - robots >= 5,
+        "{} contacts, {robots} with robots",
+        a.len()
     );
 }

@@ -134,6 +134,10 @@ trait Text {
     fn put(&mut self, s: &str);
     /// Appends ASCII bytes.
     fn put_ascii(&mut self, b: &[u8]);
+    /// Appends the first `n` bytes of `buf` (ASCII).
+    fn put_head<const N: usize>(&mut self, buf: &[u8; N], n: usize) {
+        self.put_ascii(&buf[..n]);
+    }
 }
 
 impl Text for String {
@@ -153,6 +157,46 @@ impl Text for Vec<u8> {
 
     fn put_ascii(&mut self, b: &[u8]) {
         self.extend_from_slice(b);
+    }
+
+    /// The whole buffer copied, the tail cut off: a copy of a size known when compiling is a
+    /// few moves, one of a size known only when running a call to `memmove` (a quarter of the
+    /// trace's time went there).
+    #[inline]
+    fn put_head<const N: usize>(&mut self, buf: &[u8; N], n: usize) {
+        let len = self.len();
+        self.extend_from_slice(buf);
+        self.truncate(len + n.min(N));
+    }
+}
+
+/// A piece of text of at most [`Short::CAP`] bytes held in a fixed array, written with
+/// [`Text::put_head`]; longer text is kept as it is.
+#[derive(Debug, Clone)]
+enum Short {
+    Fixed([u8; Short::CAP], u8),
+    Long(String),
+}
+
+impl Short {
+    const CAP: usize = 64;
+
+    fn new(s: String) -> Short {
+        if s.len() <= Short::CAP {
+            let mut b = [0u8; Short::CAP];
+            b[..s.len()].copy_from_slice(s.as_bytes());
+            Short::Fixed(b, s.len() as u8)
+        } else {
+            Short::Long(s)
+        }
+    }
+
+    #[inline]
+    fn put_into<T: Text>(&self, out: &mut T) {
+        match self {
+            Short::Fixed(b, n) => out.put_head(b, *n as usize),
+            Short::Long(s) => out.put(s),
+        }
     }
 }
 
@@ -188,8 +232,15 @@ const PAIRS: &[u8; 200] = b"\
 /// Appends the decimal digits of `v`, zero-padded to at least `width` digits (at most 20),
 /// without the general formatter.
 fn push_digits<T: Text>(out: &mut T, mut v: u64, width: usize) {
+    // The digits end at `n` (the count, at least `width`): written from the back, then the
+    // buffer's head is appended.
+    let mut n = 1;
+    while n < 20 && v >= POW10_U64_ALL[n] {
+        n += 1;
+    }
+    let n = n.max(width.clamp(1, 20));
     let mut buf = [b'0'; 20];
-    let mut i = buf.len();
+    let mut i = n;
     while v >= 100 {
         let k = (v % 100) as usize * 2;
         v /= 100;
@@ -204,9 +255,20 @@ fn push_digits<T: Text>(out: &mut T, mut v: u64, width: usize) {
         i -= 1;
         buf[i] = b'0' + v as u8;
     }
-    let start = i.min(buf.len() - width.clamp(1, buf.len()));
-    out.put_ascii(&buf[start..]);
+    debug_assert!(buf[..i].iter().all(|&b| b == b'0'));
+    out.put_head(&buf, n);
 }
+
+/// Powers of ten up to 10^19.
+const POW10_U64_ALL: [u64; 20] = {
+    let mut p = [1u64; 20];
+    let mut k = 1;
+    while k < 20 {
+        p[k] = p[k - 1] * 10;
+        k += 1;
+    }
+    p
+};
 
 /// Appends `v` as `format!("{v}")` writes it.
 fn push_int<T: Text>(out: &mut T, v: i64) {
@@ -354,15 +416,15 @@ pub fn line_into(out: &mut String, r: &StepRecord, dt: f64, names: &Names, event
 #[derive(Debug, Clone, Default)]
 pub struct LineWriter {
     /// Robot names, quoted.
-    robots: Vec<String>,
+    robots: Vec<Short>,
     /// Per obstacle: `"hit":"GlobalId","class":"Class"`.
-    obstacle_hits: Vec<String>,
+    obstacle_hits: Vec<Short>,
     /// Per robot: `"hit":"GlobalId","class":"Robot"`.
-    robot_hits: Vec<String>,
+    robot_hits: Vec<Short>,
     /// Door GlobalIds, quoted.
-    doors: Vec<String>,
+    doors: Vec<Short>,
     /// Zone names, quoted.
-    zones: Vec<String>,
+    zones: Vec<Short>,
 }
 
 /// A ray's object up to its distance, per ray in [`crate::sensor::RAY_DEG`] order.
@@ -380,14 +442,14 @@ impl LineWriter {
         let quoted = |s: &str| {
             let mut q = String::new();
             push_str(&mut q, s);
-            q
+            Short::new(q)
         };
         let hit = |id: &str, class: &str| {
             let mut q = String::from("\"hit\":");
             push_str(&mut q, id);
             q.push_str(",\"class\":");
             push_str(&mut q, class);
-            q
+            Short::new(q)
         };
         LineWriter {
             robots: names.robots.iter().map(|n| quoted(n)).collect(),
@@ -410,7 +472,7 @@ impl LineWriter {
         out.put(",\"t\":");
         push_fixed(out, r.step as f64 * dt, 6);
         out.put(",\"robot\":");
-        out.put(&self.robots[r.robot as usize]);
+        self.robots[r.robot as usize].put_into(out);
         out.put(",\"x\":");
         push_fixed(out, r.pos.x, 6);
         out.put(",\"y\":");
@@ -429,7 +491,7 @@ impl LineWriter {
         push_str(out, r.mode.label());
         out.put(",\"zone\":");
         match r.zone {
-            Some(z) => out.put(&self.zones[z as usize]),
+            Some(z) => self.zones[z as usize].put_into(out),
             None => out.put("null"),
         }
         out.put(",\"roles\":[");
@@ -450,8 +512,8 @@ impl LineWriter {
             out.put_ascii(b",");
             match ray.target {
                 Target::None => out.put("\"hit\":null"),
-                Target::Obstacle(i) => out.put(&self.obstacle_hits[i as usize]),
-                Target::Robot(i) => out.put(&self.robot_hits[i as usize]),
+                Target::Obstacle(i) => self.obstacle_hits[i as usize].put_into(out),
+                Target::Robot(i) => self.robot_hits[i as usize].put_into(out),
             }
             if !ray.passages.is_empty() {
                 out.put(",\"through\":[");
@@ -459,7 +521,7 @@ impl LineWriter {
                     if n > 0 {
                         out.put_ascii(b",");
                     }
-                    out.put(&self.doors[d as usize]);
+                    self.doors[d as usize].put_into(out);
                 }
                 out.put_ascii(b"]");
             }
@@ -588,6 +650,21 @@ mod tests {
             let mut sim = crate::Sim::new(&floor, &setups, crate::SimOptions::default()).unwrap();
             let names = sim.names();
             let writer = LineWriter::new(&names);
+            // The same names made longer than a fixed piece holds (and not ASCII).
+            let mut long = names.clone();
+            for s in long
+                .robots
+                .iter_mut()
+                .chain(&mut long.robot_ids)
+                .chain(&mut long.obstacles)
+                .chain(&mut long.doors)
+                .chain(&mut long.zones)
+            {
+                s.push_str(&" \u{fc}ber-lang \"x\"".repeat(6));
+            }
+            let long_writer = LineWriter::new(&long);
+            assert!(matches!(writer.robots[0], Short::Fixed(..)));
+            assert!(matches!(long_writer.robots[0], Short::Long(_)));
             let mut seen = 0;
             for k in 0..=240 {
                 sim.tick(k < 240);
@@ -620,6 +697,11 @@ mod tests {
                         let mut via_names = String::from("prefix ");
                         line_into(&mut via_names, v, 1.0 / 60.0, &names, &mine);
                         assert_eq!(via_names, want);
+                        let mut fast = Vec::new();
+                        long_writer.line_into(&mut fast, v, 1.0 / 60.0, &mine);
+                        let mut want = String::new();
+                        reference_line(&mut want, v, 1.0 / 60.0, &long, &mine);
+                        assert_eq!(String::from_utf8(fast).unwrap(), want);
                         lines += 1;
                     }
                     with_events += usize::from(!mine.is_empty());

@@ -121,23 +121,34 @@ impl Rows {
     /// them), placed by counting (no sort: the robots' grid is rebuilt every step); each cell
     /// lists its items in ascending order.
     fn build(cells: usize, pairs: &[(u32, u32)]) -> Rows {
-        let mut start = vec![0u32; cells + 1];
+        let mut rows = Rows::default();
+        rows.rebuild(cells, pairs, &mut Vec::new());
+        rows
+    }
+
+    /// [`Rows::build`] in the memory of these rows (`next` is scratch space): the robots' grid
+    /// is rebuilt every step.
+    fn rebuild(&mut self, cells: usize, pairs: &[(u32, u32)], next: &mut Vec<u32>) {
+        let start = &mut self.start;
+        start.clear();
+        start.resize(cells + 1, 0);
         for &(c, _) in pairs {
             start[c as usize + 1] += 1;
         }
         for c in 0..cells {
             start[c + 1] += start[c];
         }
-        let mut next = start.clone();
-        let mut items = vec![0u32; pairs.len()];
+        next.clear();
+        next.extend_from_slice(&start[..cells]);
+        let items = &mut self.items;
+        items.clear();
+        items.resize(pairs.len(), 0);
         for &(c, item) in pairs {
             let k = &mut next[c as usize];
             items[*k as usize] = item;
             *k += 1;
         }
-        let rows = Rows { start, items };
-        debug_assert!((0..cells).all(|c| rows.cell(c).is_sorted()));
-        rows
+        debug_assert!((0..cells).all(|c| self.cell(c).is_sorted()));
     }
 
     #[inline]
@@ -158,8 +169,19 @@ pub struct World {
     statics: Rows,
     robots: Rows,
     robot_pairs: Vec<(u32, u32)>,
+    /// Scratch space of the robots' grid rebuild.
+    robot_next: Vec<u32>,
     boxes: Vec<Obb>,
+    /// Per robot box: the radius of a circle around it, a little larger than the box's own
+    /// (see [`reach`]), for a cheap test before the exact ray test.
+    reach: Vec<f64>,
     slack: f64,
+}
+
+/// A radius safely above `b`'s circumradius: a ray missing this circle (or entering it beyond
+/// the best hit so far) misses the box or hits it later, whatever the exact test's rounding.
+fn reach(b: &Obb) -> f64 {
+    (b.hl * b.hl + b.hw * b.hw).sqrt() * (1.0 + 1e-9) + 1e-9
 }
 
 impl World {
@@ -194,7 +216,9 @@ impl World {
             statics: Rows::default(),
             robots: Rows::default(),
             robot_pairs: Vec::new(),
+            robot_next: Vec::new(),
             boxes: Vec::new(),
+            reach: Vec::new(),
             slack,
         };
         let mut pairs = Vec::new();
@@ -239,6 +263,8 @@ impl World {
     pub fn set_robots(&mut self, boxes: &[Obb]) {
         self.boxes.clear();
         self.boxes.extend_from_slice(boxes);
+        self.reach.clear();
+        self.reach.extend(boxes.iter().map(reach));
         self.refresh_robots();
     }
 
@@ -250,13 +276,15 @@ impl World {
             let (lo, hi) = b.aabb();
             self.cover(lo, hi, |c| pairs.push((c, i as u32)));
         }
-        self.robots = Rows::build(self.nx * self.ny, &pairs);
+        self.robots
+            .rebuild(self.nx * self.ny, &pairs, &mut self.robot_next);
         self.robot_pairs = pairs;
     }
 
     /// Moves robot `i`'s box within the step (its grid cells are refreshed next step; queries
     /// are widened by the slack).
     pub fn update_robot(&mut self, i: usize, b: Obb) {
+        self.reach[i] = reach(&b);
         self.boxes[i] = b;
     }
 
@@ -344,7 +372,15 @@ impl World {
                 if Some(r) == skip {
                     continue;
                 }
-                if let Some(t) = self.boxes[r as usize].ray(o, dir) {
+                // The circle around the box first (`dir` is a unit vector): missed, or entered
+                // no nearer than the best hit, the box cannot give a nearer hit.
+                let b = &self.boxes[r as usize];
+                let rel = b.c - o;
+                let rad = self.reach[r as usize];
+                if rel.perp_dot(dir).abs() > rad || rel.dot(dir) - rad >= best {
+                    continue;
+                }
+                if let Some(t) = b.ray(o, dir) {
                     if t < best {
                         best = t;
                         target = Target::Robot(r);
