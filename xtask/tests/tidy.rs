@@ -19,13 +19,17 @@ const ALLOWED: &[(&str, &[&str])] = &[
     ("poinav-nav", &["poinav-io", "poinav-poi"]),
     (
         "poinav-sim",
+        &["poinav-io", "poinav-ifc", "poinav-poi", "poinav-nav"],
+    ),
+    (
+        "poinav-bridge",
         &[
-            "poinav-io",
             "poinav-ifc",
             "poinav-geom",
             "poinav-poi",
             "poinav-author",
             "poinav-nav",
+            "poinav-sim",
         ],
     ),
     (
@@ -48,6 +52,7 @@ const ALLOWED: &[(&str, &[&str])] = &[
             "poinav-author",
             "poinav-nav",
             "poinav-sim",
+            "poinav-bridge",
             "poinav-export",
             "poinav-bcf",
             "poinav-mcap",
@@ -63,6 +68,7 @@ const ALLOWED: &[(&str, &[&str])] = &[
             "poinav-author",
             "poinav-nav",
             "poinav-sim",
+            "poinav-bridge",
             "poinav-export",
         ],
     ),

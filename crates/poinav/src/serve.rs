@@ -10,7 +10,7 @@ use std::process::ExitCode;
 
 use anyhow::Context;
 use poinav_export::SceneInput;
-use poinav_geom::{floor_plans_with_meshes, mesh_model, PlanOptions};
+use poinav_geom::{mesh_model, ModelMeshes};
 use poinav_ifc::property::{property_sets, PropertyValue, Scalar, TypedScalar};
 use poinav_ifc::{spatial, units, Model};
 use poinav_poi::{classify, Classification};
@@ -94,13 +94,15 @@ struct Shown {
     current: usize,
 }
 
-/// What the viewer shows of `model`, with `storey` (else the default storey) first.
-fn building(
+/// What the viewer shows of `model`: its GLB and click-to-inspect data from `meshes`, and the
+/// floors of `building` (the bridge's, [`poinav_bridge::building`]) with `current` first.
+fn shown(
     model: &Model,
     classification: &Classification,
-    storey: Option<&str>,
-) -> anyhow::Result<Shown> {
-    let meshes = mesh_model(model);
+    meshes: &ModelMeshes,
+    building: poinav_nav::Building,
+    current: usize,
+) -> Shown {
     let unit = units::length_unit(model);
     let structure = spatial::spatial_structure(model, &unit);
     let glb = poinav_export::glb::to_glb(&SceneInput {
@@ -155,22 +157,12 @@ fn building(
         }
         elements.insert(e.global_id.clone(), info);
     }
-    let plans = floor_plans_with_meshes(model, &meshes, &PlanOptions::default());
-    let plan = poinav_sim::ifc_floor::pick(&plans, storey).map_err(anyhow::Error::msg)?;
-    let current = plans
-        .iter()
-        .position(|p| std::ptr::eq(p, plan))
-        .unwrap_or(0);
-    let floors = plans
-        .iter()
-        .map(|p| poinav_sim::ifc_floor::floor_from_plan(p, classification))
-        .collect();
-    Ok(Shown {
+    Shown {
         glb,
         elements,
-        floors,
+        floors: building.floors,
         current,
-    })
+    }
 }
 
 fn scenario_robots(s: &Scenario) -> (Vec<RobotSetup>, SimOptions) {
@@ -190,33 +182,50 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     let profile = crate::profile(args.profile.as_deref())?;
     let rules = crate::rules(args.rules.as_deref())?;
     let scenario = args.scenario.as_deref().map(Scenario::load).transpose()?;
-    let (model, classification, title) = match (&args.file, &scenario) {
-        (Some(file), _) => {
-            let model = Model::open(file)?;
-            let c = classify(&model, &rules, &profile);
-            (model, c, file.display().to_string())
-        }
-        (None, Some(s)) => {
-            let converter = poinav_sim::ifc_floor::converter();
-            let p = poinav_sim::prepare(s, None, Some(&converter))?;
-            (
-                p.model,
-                p.classification,
-                format!("{} (scenario building)", s.name),
-            )
-        }
-        (None, None) => anyhow::bail!("give an IFC file or --scenario"),
-    };
     let storey = args
         .storey
         .as_deref()
         .or(scenario.as_ref().and_then(|s| s.building.storey.as_deref()));
+    let (model, classification, made, title) = match (&args.file, &scenario) {
+        (Some(file), _) => {
+            let model = Model::open(file)?;
+            let c = classify(&model, &rules, &profile);
+            let stages = poinav_bridge::Stages::of(&model);
+            let made = poinav_bridge::building(&model, &c, &stages);
+            let current = poinav_bridge::pick(&made.storeys, storey)?;
+            let title = file.display().to_string();
+            (
+                model,
+                c,
+                (made.building, current, Some(stages.meshes)),
+                title,
+            )
+        }
+        (None, Some(s)) => {
+            // The floors `poinav simulate` runs the scenario on, not another recipe's.
+            let p = poinav_bridge::prepare(s, None)?;
+            let current = match args.storey.as_deref() {
+                Some(name) => poinav_bridge::pick(&p.storeys, Some(name))?,
+                None => p.current,
+            };
+            let title = format!("{} (scenario building)", s.name);
+            (
+                p.model,
+                p.classification,
+                (p.building, current, None),
+                title,
+            )
+        }
+        (None, None) => anyhow::bail!("give an IFC file or --scenario"),
+    };
+    let (building, current, meshes) = made;
+    let meshes = meshes.unwrap_or_else(|| mesh_model(&model));
     let Shown {
         glb,
         elements,
         floors,
         current,
-    } = building(&model, &classification, storey)?;
+    } = shown(&model, &classification, &meshes, building, current);
     let (scenario_setups, options, source) = match &scenario {
         Some(s) => {
             let (r, o) = scenario_robots(s);

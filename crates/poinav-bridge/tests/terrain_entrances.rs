@@ -9,18 +9,18 @@
 use std::path::Path;
 
 use glam::DVec2;
+use poinav_bridge::terrain::{terrain_of, top_at, PROBE_M};
 use poinav_geom::{floor_plans_with_meshes, mesh_model, PlanOptions};
 use poinav_ifc::Model;
 use poinav_nav::audit::audit_profile;
 use poinav_nav::route::Place;
 use poinav_nav::{Building, CellState, Entrance, NavOptions, Navigator};
 use poinav_poi::{classify, RobotProfile, RuleSet};
-use poinav_sim::terrain::{terrain_of, top_at, PROBE_M};
 
 fn building(file: &Path, profile: &RobotProfile) -> Building {
     let model = Model::open(file).unwrap();
     let c = classify(&model, &RuleSet::defaults(), profile);
-    poinav_sim::ifc_floor::building_of(&model, &c)
+    poinav_bridge::building(&model, &c, &poinav_bridge::Stages::of(&model)).building
 }
 
 /// Per door with a side outside: (name, how it is entered), in the topology's order.
