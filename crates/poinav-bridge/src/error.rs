@@ -53,7 +53,10 @@ pub enum BridgeError {
     /// The building's IFC data is not a readable model.
     #[error("building")]
     Read(#[source] poinav_ifc::ReadError),
-    /// Rules, a profile or the write-back.
+    /// The scenario's robot profile.
+    #[error(transparent)]
+    Profile(#[from] poinav_poi::ProfileError),
+    /// Rules or the write-back.
     #[error(transparent)]
     Poi(#[from] poinav_poi::PoiError),
     /// The scenario (its variant or profile).

@@ -2,7 +2,7 @@
 //! POI roles. Navigation and simulation read this, never IFC.
 
 use glam::DVec2;
-use poinav_poi::{AccessibilityStatus, CoordinationProtocol, Role};
+use poinav_roles::{AccessibilityStatus, CoordinationProtocol, Role};
 use serde::{Deserialize, Serialize};
 
 use crate::polygon::PassageFrame;

@@ -6,7 +6,7 @@ use super::*;
 use crate::geometry::Obb;
 use crate::robot::{Brush, Limits, RobotState};
 use crate::test_floor::{door_floor, open_floor, rect, robot, wall, View};
-use poinav_poi::{AccessibilityStatus, RobotProfile};
+use poinav_roles::{AccessibilityStatus, RobotProfile};
 use std::f64::consts::FRAC_PI_2;
 
 /// The paper robot brakes at 0.8 x 20 m/s² in Algorithm 1's stopping distances.

@@ -31,7 +31,7 @@ pub enum SimError {
         /// What.
         message: String,
     },
-    /// POI enrichment or write-back.
+    /// A robot profile could not be read.
     #[error(transparent)]
-    Poi(#[from] poinav_poi::PoiError),
+    Profile(#[from] poinav_roles::ProfileError),
 }

@@ -21,6 +21,7 @@ mod error;
 pub mod events;
 pub mod expect;
 pub mod geometry;
+mod key_error;
 pub mod neighbours;
 pub mod output;
 pub mod plot;
@@ -40,6 +41,7 @@ pub mod world;
 
 pub use error::SimError;
 pub use events::{Event, EventKind};
+pub use key_error::KeyError;
 pub use output::{run_into, write_outputs};
 pub use recorder::{Recorder, RobotFigures, TraceOut};
 pub use run::{run, run_with, Outcome};

@@ -5,7 +5,7 @@
 
 use std::path::{Path, PathBuf};
 
-use poinav_poi::{PoiError, RobotProfile};
+use poinav_roles::{ProfileError, RobotProfile};
 use serde::Deserialize;
 use toml::Spanned;
 
@@ -417,7 +417,7 @@ impl Scenario {
 }
 
 /// `paper` or a profile file relative to `dir`.
-pub fn load_profile(name: &str, dir: &Path) -> Result<RobotProfile, PoiError> {
+pub fn load_profile(name: &str, dir: &Path) -> Result<RobotProfile, ProfileError> {
     if name == "paper" {
         return Ok(RobotProfile::paper());
     }

@@ -3,7 +3,7 @@
 
 use glam::DVec2;
 use poinav_nav::{Floor, FloorDoor, FloorObstacle, FloorZone, ObstacleKind};
-use poinav_poi::{AccessibilityStatus, CoordinationProtocol, RobotProfile, Role};
+use poinav_roles::{AccessibilityStatus, CoordinationProtocol, RobotProfile, Role};
 
 use crate::algorithm1::{self, Behaviour, Env, Mind, PendingClearance, Perception, Sink};
 use crate::events::Event;
