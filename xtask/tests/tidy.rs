@@ -7,25 +7,27 @@ use std::path::{Path, PathBuf};
 
 /// The allowed `[dependencies]` edges between workspace crates (dev-dependencies are free).
 /// Reading IFC -> geometry -> POI rules -> navigation and simulation; exporters read their
-/// outputs; the binary, the viewer and the Python package are glue. The edges from
-/// `poinav-nav` and `poinav-sim` to the IFC side are the ones the one-bridge refactor (issue
-/// "One building model for every consumer") is to remove.
+/// outputs; the binary, the viewer and the Python package are glue. `poinav-nav` and
+/// `poinav-sim` know no IFC and no geometry (not even through `poinav-poi`): roles and profiles
+/// come from `poinav-roles`, and `poinav-bridge` is the one way from a model to their building.
 const ALLOWED: &[(&str, &[&str])] = &[
     ("poinav-io", &[]),
     ("poinav-ifc", &["poinav-io"]),
     ("poinav-geom", &["poinav-ifc"]),
-    ("poinav-poi", &["poinav-ifc", "poinav-geom"]),
+    ("poinav-roles", &[]),
+    ("poinav-poi", &["poinav-ifc", "poinav-geom", "poinav-roles"]),
     ("poinav-author", &["poinav-ifc"]),
-    ("poinav-nav", &["poinav-io", "poinav-poi"]),
+    ("poinav-nav", &["poinav-io", "poinav-roles"]),
+    ("poinav-sim", &["poinav-io", "poinav-roles", "poinav-nav"]),
     (
-        "poinav-sim",
+        "poinav-bridge",
         &[
-            "poinav-io",
             "poinav-ifc",
             "poinav-geom",
             "poinav-poi",
             "poinav-author",
             "poinav-nav",
+            "poinav-sim",
         ],
     ),
     (
@@ -36,8 +38,11 @@ const ALLOWED: &[(&str, &[&str])] = &[
         "poinav-bcf",
         &["poinav-io", "poinav-ifc", "poinav-poi", "poinav-nav"],
     ),
-    ("poinav-mcap", &["poinav-io", "poinav-poi", "poinav-nav"]),
-    ("poinav-viewer", &["poinav-poi", "poinav-nav", "poinav-sim"]),
+    ("poinav-mcap", &["poinav-io", "poinav-roles", "poinav-nav"]),
+    (
+        "poinav-viewer",
+        &["poinav-roles", "poinav-nav", "poinav-sim"],
+    ),
     (
         "poinav",
         &[
@@ -48,6 +53,7 @@ const ALLOWED: &[(&str, &[&str])] = &[
             "poinav-author",
             "poinav-nav",
             "poinav-sim",
+            "poinav-bridge",
             "poinav-export",
             "poinav-bcf",
             "poinav-mcap",
@@ -63,6 +69,7 @@ const ALLOWED: &[(&str, &[&str])] = &[
             "poinav-author",
             "poinav-nav",
             "poinav-sim",
+            "poinav-bridge",
             "poinav-export",
         ],
     ),

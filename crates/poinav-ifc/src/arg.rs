@@ -5,6 +5,20 @@ use std::fmt::Write as _;
 use crate::string;
 use crate::EntityId;
 
+/// A value that has no STEP form.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ArgError {
+    /// A real that is NaN or infinite.
+    #[error("{0} is not a finite number")]
+    NotFinite(f64),
+    /// An enumeration item with characters STEP does not allow, or none.
+    #[error("`{0}` is not a valid enumeration item")]
+    BadEnum(String),
+    /// A type name with characters STEP does not allow, or none.
+    #[error("`{0}` is not a valid type name")]
+    BadTypeName(String),
+}
+
 /// A value for a new or changed attribute.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Arg {
@@ -42,15 +56,13 @@ impl Arg {
     }
 
     /// Appends the STEP form to `out`; fails on a non-finite real or an invalid enum or type name.
-    pub fn write_step(&self, out: &mut String) -> Result<(), String> {
+    pub fn write_step(&self, out: &mut String) -> Result<(), ArgError> {
         match self {
             Arg::Null => out.push('$'),
             Arg::Derived => out.push('*'),
             Arg::Ref(id) => write!(out, "#{}", id.0).expect("write to String"),
             Arg::Integer(i) => write!(out, "{i}").expect("write to String"),
-            Arg::Real(r) => {
-                out.push_str(&format_real(*r).ok_or_else(|| format!("{r} is not a finite number"))?)
-            }
+            Arg::Real(r) => out.push_str(&format_real(*r).ok_or(ArgError::NotFinite(*r))?),
             Arg::Text(s) => {
                 out.push('\'');
                 out.push_str(&string::encode(s));
@@ -58,14 +70,14 @@ impl Arg {
             }
             Arg::Enum(e) => {
                 if e.is_empty() || !e.bytes().all(|b| b.is_ascii_alphanumeric() || b == b'_') {
-                    return Err(format!("`{e}` is not a valid enumeration item"));
+                    return Err(ArgError::BadEnum(e.clone()));
                 }
                 write!(out, ".{}.", e.to_ascii_uppercase()).expect("write to String");
             }
             Arg::Bool(b) => out.push_str(if *b { ".T." } else { ".F." }),
             Arg::Typed(t, v) => {
                 if t.is_empty() || !t.bytes().all(|b| b.is_ascii_alphanumeric() || b == b'_') {
-                    return Err(format!("`{t}` is not a valid type name"));
+                    return Err(ArgError::BadTypeName(t.clone()));
                 }
                 out.push_str(&t.to_ascii_uppercase());
                 out.push('(');

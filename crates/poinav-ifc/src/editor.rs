@@ -25,8 +25,12 @@ pub enum EditError {
         want: usize,
     },
     /// A value cannot be written.
-    #[error("{entity}: {message}")]
-    BadValue { entity: String, message: String },
+    #[error("{entity}: {source}")]
+    BadValue {
+        entity: String,
+        #[source]
+        source: crate::ArgError,
+    },
     /// No instance has this id.
     #[error("{0} does not exist")]
     NoSuchInstance(EntityId),
@@ -147,9 +151,9 @@ impl<'m> Editor<'m> {
         let mut line = format!("#{}={}", id.0, def.upper);
         Arg::List(args)
             .write_step(&mut line)
-            .map_err(|message| EditError::BadValue {
+            .map_err(|source| EditError::BadValue {
                 entity: def.name.to_string(),
-                message,
+                source,
             })?;
         line.push(';');
         self.next_id = Some(next + 1);
@@ -190,9 +194,9 @@ impl<'m> Editor<'m> {
         let mut new_value = String::new();
         value
             .write_step(&mut new_value)
-            .map_err(|message| EditError::BadValue {
+            .map_err(|source| EditError::BadValue {
                 entity: entity.type_name().to_string(),
-                message,
+                source,
             })?;
         let mut out = current[..open].to_vec();
         out.push(b'(');

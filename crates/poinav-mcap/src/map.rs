@@ -6,7 +6,7 @@
 use glam::DVec2;
 use poinav_nav::nav2::cropped_building;
 use poinav_nav::{Building, CellState, Floor, Nav2Options, NavError, Navigator};
-use poinav_poi::RobotProfile;
+use poinav_roles::RobotProfile;
 
 /// A map ready for `nav_msgs/msg/OccupancyGrid`.
 #[derive(Debug, Clone, PartialEq)]

@@ -9,7 +9,7 @@ use std::collections::BTreeMap;
 
 use glam::DVec2;
 use poinav_nav::{Floor, ObstacleKind};
-use poinav_poi::Role;
+use poinav_roles::Role;
 
 use crate::msgs::{Marker, MarkerKind};
 

@@ -8,7 +8,7 @@ use std::path::Path;
 use glam::DVec2;
 use poinav_mcap::{storey_map, write_recording, McapError, Scene, START_NS};
 use poinav_nav::{Floor, FloorDoor, FloorObstacle, FloorZone, Nav2Options, ObstacleKind};
-use poinav_poi::{AccessibilityStatus, RobotProfile, Role};
+use poinav_roles::{AccessibilityStatus, RobotProfile, Role};
 
 fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Vec<DVec2> {
     vec![

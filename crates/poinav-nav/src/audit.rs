@@ -9,7 +9,7 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use poinav_io::xml::attr;
-use poinav_poi::{AccessibilityStatus, RobotProfile, Role};
+use poinav_roles::{AccessibilityStatus, RobotProfile, Role};
 use serde::Serialize;
 
 use crate::building::Building;

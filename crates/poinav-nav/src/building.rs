@@ -3,7 +3,7 @@
 //! connections for any robot profile.
 
 use glam::DVec2;
-use poinav_poi::{
+use poinav_roles::{
     clear_width_status, slope_status, stairs_status, AccessibilityStatus, RobotProfile,
 };
 use serde::{Deserialize, Serialize};
@@ -207,7 +207,7 @@ pub fn worse(a: AccessibilityStatus, b: AccessibilityStatus) -> AccessibilitySta
     }
 }
 
-/// The clear-width rule of poinav-poi ([`poinav_poi::clear_width_status`], docs/rules.md): at
+/// The clear-width rule of poinav-poi ([`poinav_roles::clear_width_status`], docs/rules.md): at
 /// least MinClearanceWidth FULL_ACCESS, at least the robot's width RESTRICTED, else BLOCKED; a
 /// width that is not a positive number is unknown (PENDING_VALIDATION).
 pub fn width_status(clear_width_m: f64, profile: &RobotProfile) -> (AccessibilityStatus, String) {

@@ -12,6 +12,9 @@ pub enum NavError {
     /// An option or an input value is out of range.
     #[error("{0}")]
     Invalid(String),
+    /// A speed fraction is out of range.
+    #[error(transparent)]
+    Speed(#[from] crate::speed::SpeedError),
     /// No storey, space or point by that name.
     #[error("{0}")]
     NotFound(String),

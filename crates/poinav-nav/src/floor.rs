@@ -2,7 +2,7 @@
 //! POI roles. Navigation and simulation read this, never IFC.
 
 use glam::DVec2;
-use poinav_poi::{AccessibilityStatus, CoordinationProtocol, Role};
+use poinav_roles::{AccessibilityStatus, CoordinationProtocol, Role};
 use serde::{Deserialize, Serialize};
 
 use crate::polygon::PassageFrame;
@@ -70,7 +70,7 @@ pub struct FloorDoor {
     pub doorless: bool,
     /// Its side outside every space opens onto the terrain at its storey's walking level (a
     /// hillside door on a storey that is not at ground level): an entrance all the same
-    /// ([`crate::level::Entrance::Terrain`]). Set by the IFC bridge (`poinav_sim::terrain`)
+    /// ([`crate::level::Entrance::Terrain`]). Set by the IFC bridge (`poinav_bridge::terrain`)
     /// from the terrain's meshes; `false` on hand-built floors.
     #[serde(default)]
     pub terrain: bool,

@@ -9,7 +9,7 @@
 use std::collections::{BTreeMap, BinaryHeap};
 
 use glam::DVec2;
-use poinav_poi::{AccessibilityStatus, RobotProfile, Role};
+use poinav_roles::{AccessibilityStatus, RobotProfile, Role};
 use serde::Serialize;
 
 use crate::building::{door_status, passable, Building};

@@ -11,7 +11,7 @@
 use std::time::Instant;
 
 use glam::DVec2;
-use poinav_poi::{AccessibilityStatus, RobotProfile};
+use poinav_roles::{AccessibilityStatus, RobotProfile};
 use serde::Serialize;
 
 use crate::bounds::{self, GaveUp, Stage, StageBounds};

@@ -19,7 +19,7 @@
 //! ```
 //! use glam::DVec2;
 //! use poinav_nav::{Building, Floor, FloorDoor, FloorObstacle, FloorZone, NavOptions, Navigator, ObstacleKind, Place};
-//! use poinav_poi::{AccessibilityStatus, RobotProfile};
+//! use poinav_roles::{AccessibilityStatus, RobotProfile};
 //!
 //! let rect = |x0: f64, y0: f64, x1: f64, y1: f64| {
 //!     vec![DVec2::new(x0, y0), DVec2::new(x1, y0), DVec2::new(x1, y1), DVec2::new(x0, y1)]
@@ -95,4 +95,4 @@ pub use navigator::{NavOptions, Navigator};
 pub use progress::{Phase, Progress};
 pub use route::{Place, Route, Unreachable};
 pub use space_name::{Ambiguous, SpaceRef};
-pub use speed::RoleSpeeds;
+pub use speed::{RoleSpeeds, SpeedError};

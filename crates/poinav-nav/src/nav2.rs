@@ -37,7 +37,7 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use glam::DVec2;
-use poinav_poi::{AccessibilityStatus, RobotProfile};
+use poinav_roles::{AccessibilityStatus, RobotProfile};
 use serde::Serialize;
 
 use crate::audit::slug;

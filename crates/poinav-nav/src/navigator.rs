@@ -2,7 +2,7 @@
 //! door's and connection's status, whether each door can be crossed in the grid, and the
 //! speed fractions of every zone and door. Routes, the audit and the Nav2 bundle start here.
 
-use poinav_poi::{AccessibilityStatus, RobotProfile};
+use poinav_roles::{AccessibilityStatus, RobotProfile};
 use serde::Serialize;
 
 use crate::building::{passable, Building};
@@ -94,7 +94,7 @@ impl<'a> Navigator<'a> {
         progress: crate::progress::Progress<'_>,
     ) -> Result<Navigator<'a>, NavError> {
         use crate::progress::Phase;
-        options.speeds.validate().map_err(NavError::Invalid)?;
+        options.speeds.validate()?;
         progress(Phase::Graph, 0, 1);
         let mut topology = Topology::build_with(building, &options.grid.bounds);
         let status = topology.statuses(building, profile);

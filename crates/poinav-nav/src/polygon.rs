@@ -3,6 +3,16 @@
 
 use glam::DVec2;
 
+/// The axis-aligned rectangle `[x0, x1] x [y0, y1]` as a counter-clockwise ring.
+pub fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Vec<DVec2> {
+    vec![
+        DVec2::new(x0, y0),
+        DVec2::new(x1, y0),
+        DVec2::new(x1, y1),
+        DVec2::new(x0, y1),
+    ]
+}
+
 /// True when `p` is inside `ring` (even-odd rule; points exactly on an edge may go either way).
 pub fn contains(ring: &[DVec2], p: DVec2) -> bool {
     let n = ring.len();

@@ -14,7 +14,7 @@ use std::fmt;
 use std::str::FromStr;
 
 use glam::DVec2;
-use poinav_poi::{AccessibilityStatus, Role};
+use poinav_roles::{AccessibilityStatus, Role};
 use serde::Serialize;
 
 use crate::graph::{round6, EdgeKind, NodeKind, Topology};

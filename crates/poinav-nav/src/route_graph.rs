@@ -194,7 +194,7 @@ fn zone_label(z: &crate::floor::FloorZone) -> String {
         .unwrap_or_else(|| z.id.clone())
 }
 
-fn roles(roles: &[poinav_poi::Role]) -> Value {
+fn roles(roles: &[poinav_roles::Role]) -> Value {
     json!(roles.iter().map(|r| r.label()).collect::<Vec<_>>())
 }
 

@@ -2,10 +2,20 @@
 //! zone or door. Routes (expected time), the Nav2 speed mask and the route graph's
 //! `speed_limit` all use these same numbers.
 
-use poinav_poi::{AccessibilityStatus, CoordinationProtocol, Role};
+use poinav_roles::{AccessibilityStatus, CoordinationProtocol, Role};
 use serde::Serialize;
 
 use crate::floor::{FloorDoor, FloorZone};
+
+/// A speed fraction out of (0, 1].
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("speed fraction {name} must be in (0, 1], not {value}")]
+pub struct SpeedError {
+    /// Which fraction.
+    pub name: &'static str,
+    /// Its value.
+    pub value: f64,
+}
 
 /// Speed fractions (0 < f <= 1) of the profile's maximum speed per role.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -41,7 +51,7 @@ impl Default for RoleSpeeds {
 
 impl RoleSpeeds {
     /// Checks every fraction is in (0, 1].
-    pub fn validate(&self) -> Result<(), String> {
+    pub fn validate(&self) -> Result<(), SpeedError> {
         for (name, v) in [
             ("hazard", self.hazard),
             ("narrow", self.narrow),
@@ -51,7 +61,7 @@ impl RoleSpeeds {
             ("multi_robot", self.multi_robot),
         ] {
             if !(v > 0.0 && v <= 1.0) {
-                return Err(format!("speed fraction {name} must be in (0, 1], not {v}"));
+                return Err(SpeedError { name, value: v });
             }
         }
         Ok(())

@@ -10,7 +10,7 @@
 use std::fmt::Write as _;
 
 use glam::DVec2;
-use poinav_poi::AccessibilityStatus;
+use poinav_roles::AccessibilityStatus;
 
 use crate::audit::ProfileAudit;
 use crate::building::Building;

@@ -2,27 +2,14 @@
 //! giving its POI category, type, roles, accessibility and coordination values.
 
 use poinav_ifc::{spatial, Entity, EntityId, Model};
+use poinav_roles::{
+    clear_width_status, slope_status, stairs_status, Accessibility, AccessibilityStatus, Category,
+    Coordination, PoiType, RobotProfile, Role, ValidationMethod,
+};
 use rayon::prelude::*;
 
 use crate::facts::{FactContext, Facts};
-use crate::profile::RobotProfile;
-use crate::rules::{AccessibilityKind, Coordination, RuleSet};
-use crate::taxonomy::{AccessibilityStatus, Category, PoiType, Role, ValidationMethod};
-
-/// Pset_RobotAccessibility values for one element and profile.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Accessibility {
-    /// Required clear width (the profile's), metres.
-    pub min_clearance_width_m: f64,
-    /// Required clear height (the profile's), metres.
-    pub min_clearance_height_m: f64,
-    /// The verdict.
-    pub status: AccessibilityStatus,
-    /// How it was reached.
-    pub method: ValidationMethod,
-    /// Why, in words (`clear width 0.785 m < required 0.900 m`).
-    pub reason: String,
-}
+use crate::rules::{AccessibilityKind, RuleSet};
 
 /// One classified element.
 #[derive(Debug, Clone, PartialEq)]
@@ -64,6 +51,18 @@ pub struct Classification {
     pub elements: Vec<Classified>,
 }
 
+impl Classified {
+    /// What rule R5 reads and changes of this element ([`crate::runtime::apply`]).
+    pub fn roles_mut(&mut self) -> poinav_roles::runtime::RolesMut<'_> {
+        poinav_roles::runtime::RolesMut {
+            primary: &self.primary,
+            conditional: &mut self.conditional,
+            accessibility: self.accessibility.as_mut(),
+            coordination: self.coordination.as_ref(),
+        }
+    }
+}
+
 impl Classification {
     /// The element `id`, if it was classified.
     pub fn get(&self, id: EntityId) -> Option<&Classified> {
@@ -72,88 +71,6 @@ impl Classification {
             .ok()
             .map(|i| &self.elements[i])
             .or_else(|| self.elements.iter().find(|c| c.id == id))
-    }
-}
-
-fn fmt_m(v: f64) -> String {
-    format!("{v:.3} m")
-}
-
-/// The clear-width rule (docs/rules.md): at least the profile's MinClearanceWidth is
-/// FULL_ACCESS, at least the robot's width RESTRICTED, narrower BLOCKED, unknown
-/// PENDING_VALIDATION; with the reason (`source` says where the width comes from). Navigation
-/// applies the same rule to doors and connections for any profile.
-pub fn clear_width_status(
-    clear_width_m: Option<f64>,
-    source: Option<&str>,
-    profile: &RobotProfile,
-) -> (AccessibilityStatus, String) {
-    use AccessibilityStatus::*;
-    let need = profile.min_clearance_width();
-    let from = source.map(|s| format!(" ({s})")).unwrap_or_default();
-    match clear_width_m {
-        Some(w) if w >= need => (
-            FullAccess,
-            format!("clear width {}{from} >= required {}", fmt_m(w), fmt_m(need)),
-        ),
-        Some(w) if w >= profile.width_m => (
-            Restricted,
-            format!(
-                "clear width {}{from} < required {}, >= robot width {}",
-                fmt_m(w),
-                fmt_m(need),
-                fmt_m(profile.width_m)
-            ),
-        ),
-        Some(w) => (
-            Blocked,
-            format!(
-                "clear width {}{from} < robot width {}",
-                fmt_m(w),
-                fmt_m(profile.width_m)
-            ),
-        ),
-        None => (PendingValidation, "clear width unknown".into()),
-    }
-}
-
-/// Stairs: FULL_ACCESS for a profile that climbs them, else BLOCKED; with the reason.
-pub fn stairs_status(profile: &RobotProfile) -> (AccessibilityStatus, String) {
-    if profile.climbs_stairs() {
-        (
-            AccessibilityStatus::FullAccess,
-            format!("profile {} climbs stairs", profile.name),
-        )
-    } else {
-        (
-            AccessibilityStatus::Blocked,
-            format!(
-                "stairs are not passable for a {} robot",
-                format!("{:?}", profile.locomotion).to_lowercase()
-            ),
-        )
-    }
-}
-
-/// A ramp: FULL_ACCESS up to the profile's maximum slope, BLOCKED above it, PENDING_VALIDATION
-/// when the slope is unknown; with the reason.
-pub fn slope_status(
-    slope_deg: Option<f64>,
-    profile: &RobotProfile,
-) -> (AccessibilityStatus, String) {
-    match slope_deg {
-        Some(s) if s <= profile.max_slope_deg => (
-            AccessibilityStatus::FullAccess,
-            format!("slope {s:.1} deg <= max {:.1} deg", profile.max_slope_deg),
-        ),
-        Some(s) => (
-            AccessibilityStatus::Blocked,
-            format!("slope {s:.1} deg > max {:.1} deg", profile.max_slope_deg),
-        ),
-        None => (
-            AccessibilityStatus::PendingValidation,
-            "slope unknown".into(),
-        ),
     }
 }
 

@@ -3,7 +3,7 @@
 use std::fmt;
 
 use crate::facts::{Facts, MEASURES};
-use crate::profile::RobotProfile;
+use poinav_roles::RobotProfile;
 
 /// A comparison operator.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -19,6 +19,9 @@ pub enum PoiError {
         rule: String,
         message: String,
     },
+    /// A robot profile could not be read.
+    #[error(transparent)]
+    Profile(#[from] poinav_roles::ProfileError),
     /// Writing the enriched model failed.
     #[error(transparent)]
     Edit(#[from] poinav_ifc::EditError),

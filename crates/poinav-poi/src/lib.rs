@@ -1,6 +1,7 @@
-//! Robot Point-of-Interest (POI) semantics for IFC models: the role taxonomy, mapping rules as
-//! data, robot profiles, classification of every element, and writing the three property sets
-//! back into the IFC losslessly.
+//! Robot Point-of-Interest (POI) semantics for IFC models: the facts rules test, mapping rules as
+//! data, classification of every element, and writing the three property sets back into the IFC
+//! losslessly. The role taxonomy, robot profiles, the status rules and R5's updates are
+//! `poinav-roles`' (it knows no IFC), re-exported here.
 //!
 //! ```
 //! use poinav_poi::{classify, RobotProfile, RuleSet, Role, AccessibilityStatus};
@@ -20,25 +21,21 @@ mod classify;
 mod condition;
 mod error;
 mod facts;
-mod profile;
 mod rules;
 pub mod runtime;
-mod taxonomy;
 mod write;
 
-pub use classify::{
-    classify, clear_width_status, slope_status, stairs_status, Accessibility, Classification,
-    Classified,
-};
+pub use classify::{classify, Classification, Classified};
 pub use condition::{Condition, Op, Operand};
 pub use error::PoiError;
 pub use facts::{FactContext, FactValue, Facts, MEASURES};
 pub use poinav_ifc::timestamp::{iso8601_utc, now_or_source_date_epoch};
-pub use profile::{Locomotion, RobotProfile};
-pub use rules::{AccessibilityKind, ConditionalRole, Coordination, PropertyTest, Rule, RuleSet};
-pub use taxonomy::{
-    AccessibilityStatus, AppliesTo, Category, CoordinationProtocol, PoiType, Role, ValidationMethod,
+pub use poinav_roles::{
+    clear_width_status, slope_status, stairs_status, Accessibility, AccessibilityStatus, AppliesTo,
+    Category, Coordination, CoordinationProtocol, Locomotion, PoiRecord, PoiType, ProfileError,
+    RobotProfile, Role, ValidationMethod,
 };
+pub use rules::{AccessibilityKind, ConditionalRole, PropertyTest, Rule, RuleSet};
 pub use write::{
     previous_enrichment, pset_names, stored_length, write_enrichment, PsetNames, WriteOptions,
     POINAV_MARKER,

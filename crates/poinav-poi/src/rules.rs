@@ -13,8 +13,7 @@ use serde::Deserialize;
 use crate::condition::Condition;
 use crate::error::PoiError;
 use crate::facts::{FactValue, Facts};
-use crate::profile::RobotProfile;
-use crate::taxonomy::{AppliesTo, Category, CoordinationProtocol, PoiType, Role};
+use poinav_roles::{Category, Coordination, PoiType, RobotProfile, Role};
 
 /// How AccessibilityStatus is decided for the elements of a rule.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
@@ -32,25 +31,6 @@ pub enum AccessibilityKind {
     Slope,
     /// Spaces: from the statuses of their doors.
     Space,
-}
-
-/// Pset_RobotCoordination values a rule assigns.
-#[derive(Debug, Clone, PartialEq, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct Coordination {
-    /// MaxSimultaneousRobots.
-    pub max_robots: i64,
-    /// MinInterRobotSeparation in metres.
-    pub min_separation_m: f64,
-    /// CoordinationProtocol.
-    pub protocol: CoordinationProtocol,
-    /// AppliesTo.
-    #[serde(default = "all_robots")]
-    pub applies_to: AppliesTo,
-}
-
-fn all_robots() -> AppliesTo {
-    AppliesTo::AllRobots
 }
 
 #[derive(Debug, Clone, Deserialize)]

@@ -6,7 +6,7 @@ use poinav_ifc::{Arg, Editor, EntityId, Model, NewProperty, Schema};
 
 use crate::classify::{Classification, Classified};
 use crate::error::PoiError;
-use crate::taxonomy::{
+use poinav_roles::{
     AccessibilityStatus, AppliesTo, Category, CoordinationProtocol, PoiType, ValidationMethod,
 };
 

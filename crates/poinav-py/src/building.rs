@@ -36,24 +36,11 @@ impl Building {
         let profile = crate::profile::profile(profile)?;
         let (inner, warnings, meshed) = py.detach(|| {
             let c = classify(model, &RuleSet::defaults(), &profile);
-            let meshes = poinav_geom::mesh_model(model);
-            let plans = poinav_geom::floor_plans_with_meshes(model, &meshes, &Default::default());
-            let (building, dropped) =
-                poinav_sim::ifc_floor::building_from_plans(model, &c, &meshes, &plans);
-            let mut warnings: Vec<String> = dropped
-                .iter()
-                .map(|d| {
-                    let name = match &d.name {
-                        Some(n) => format!("{n} ({})", d.id),
-                        None => d.id.clone(),
-                    };
-                    format!(
-                        "{} {name} is left out, it connects no storeys: {}",
-                        d.kind.label(),
-                        d.reason
-                    )
-                })
-                .collect();
+            let stages = poinav_bridge::Stages::of(model);
+            let made = poinav_bridge::building(model, &c, &stages);
+            let mut warnings: Vec<String> = made.dropped.iter().map(|d| d.message()).collect();
+            let building = made.building;
+            let meshes = stages.meshes;
             warnings.extend(building.diagnostics());
             (
                 building,

@@ -101,25 +101,23 @@ pub fn simulate<'py>(
         )));
     }
     let (outcome, cols, written) = py.detach(|| -> PyResult<_> {
-        let converter = poinav_sim::ifc_floor::converter();
-        let building =
-            poinav_sim::prepare(&scenario, variant.as_deref(), Some(&converter)).map_err(to_py)?;
+        let building = poinav_bridge::prepare(&scenario, variant.as_deref()).map_err(to_py)?;
         let (outcome, written) = match &output {
             Some(dir) if stream => {
                 let every = trace.then_some(1);
-                poinav_sim::run_into(dir, &scenario, variant.as_deref(), &building.floor, every)
+                poinav_sim::run_into(dir, &scenario, variant.as_deref(), building.floor(), every)
                     .map_err(to_py)?
             }
             _ => {
                 let outcome = if trace {
-                    poinav_sim::run(&scenario, variant.as_deref(), &building.floor)
+                    poinav_sim::run(&scenario, variant.as_deref(), building.floor())
                 } else {
-                    poinav_sim::run_with(&scenario, variant.as_deref(), &building.floor, None)
+                    poinav_sim::run_with(&scenario, variant.as_deref(), building.floor(), None)
                 }
                 .map_err(to_py)?;
                 let written = match &output {
                     Some(dir) => {
-                        poinav_sim::write_outputs(dir, &outcome, &building.floor).map_err(to_py)?
+                        poinav_sim::write_outputs(dir, &outcome, building.floor()).map_err(to_py)?
                     }
                     None => Vec::new(),
                 };

@@ -21,13 +21,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     };
     let mut all = true;
     for v in variants {
-        let building = poinav_sim::prepare(&scenario, v.as_deref(), None)?;
-        let outcome = poinav_sim::run(&scenario, v.as_deref(), &building.floor)?;
+        let building = poinav_bridge::prepare(&scenario, v.as_deref())?;
+        let outcome = poinav_sim::run(&scenario, v.as_deref(), building.floor())?;
         let dir = match &v {
             Some(v) => Path::new(out).join(v),
             None => Path::new(out).to_path_buf(),
         };
-        poinav_sim::write_outputs(&dir, &outcome, &building.floor)?;
+        poinav_sim::write_outputs(&dir, &outcome, building.floor())?;
         for j in &outcome.judged {
             println!(
                 "{} line {} {}: {} -> {}",

@@ -16,8 +16,8 @@
 
 use glam::DVec2;
 use poinav_nav::Floor;
-use poinav_poi::runtime::{Observation, RuntimeChange};
-use poinav_poi::{CoordinationProtocol, Role};
+use poinav_roles::runtime::{Observation, RuntimeChange};
+use poinav_roles::{CoordinationProtocol, Role};
 use serde::Deserialize;
 
 use crate::controller::{Command, Side, WallPd};
@@ -840,7 +840,7 @@ pub fn apply_clearance(
         name: r.name.clone(),
         estimate_m: estimate,
         required_m: a.map_or(f64::NAN, |a| a.min_clearance_width_m),
-        status: a.map_or(poinav_poi::AccessibilityStatus::PendingValidation, |a| {
+        status: a.map_or(poinav_roles::AccessibilityStatus::PendingValidation, |a| {
             a.status
         }),
         roles,

@@ -6,7 +6,7 @@ use super::*;
 use crate::geometry::Obb;
 use crate::robot::{Brush, Limits, RobotState};
 use crate::test_floor::{door_floor, open_floor, rect, robot, wall, View};
-use poinav_poi::{AccessibilityStatus, RobotProfile};
+use poinav_roles::{AccessibilityStatus, RobotProfile};
 use std::f64::consts::FRAC_PI_2;
 
 /// The paper robot brakes at 0.8 x 20 m/s² in Algorithm 1's stopping distances.
@@ -517,7 +517,7 @@ fn door_waits_through_the_grid_equal_those_testing_every_robot() {
         std::path::Path::new("."),
     )
     .unwrap();
-    let floor = crate::prepare(&scenario, None, None).unwrap().floor;
+    let floor = crate::test_floor::prepared(&scenario, None);
     assert!(floor.doors.len() >= 6, "{} doors", floor.doors.len());
     let nav = NavGraph::new(&floor);
     let mut seed = 0x2545_F491_4F6C_DD1Du64;

@@ -6,6 +6,7 @@ use glam::DVec2;
 use serde::Deserialize;
 
 use crate::geometry::wrap_angle;
+use crate::key_error::KeyError;
 use crate::robot::Limits;
 use crate::route::NavGraph;
 
@@ -56,7 +57,7 @@ pub enum Key {
 
 impl Key {
     /// Parses a key name of `scheme` (`Up`/`ArrowUp`, `W`, ..., `Brush`).
-    pub fn parse(scheme: KeyScheme, name: &str) -> Result<Key, String> {
+    pub fn parse(scheme: KeyScheme, name: &str) -> Result<Key, KeyError> {
         let n = name.trim().to_ascii_lowercase();
         let n = n.strip_prefix("arrow").unwrap_or(&n);
         let key = match (scheme, n) {
@@ -66,11 +67,10 @@ impl Key {
             (KeyScheme::Arrows, "left") | (KeyScheme::Wasd, "a") => Key::Left,
             (KeyScheme::Arrows, "right") | (KeyScheme::Wasd, "d") => Key::Right,
             _ => {
-                let keys = match scheme {
-                    KeyScheme::Arrows => "Up, Down, Left, Right, Brush",
-                    KeyScheme::Wasd => "W, A, S, D, Brush",
-                };
-                return Err(format!("key `{name}` is not one of {keys}"));
+                return Err(KeyError {
+                    name: name.to_string(),
+                    scheme,
+                })
             }
         };
         Ok(key)

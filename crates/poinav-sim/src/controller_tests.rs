@@ -99,7 +99,7 @@ fn keys_parse_in_their_scheme_only() {
     assert_eq!(Key::parse(Wasd, "d"), Ok(Key::Right));
     assert_eq!(Key::parse(Wasd, "Brush"), Ok(Key::Brush));
     assert_eq!(
-        Key::parse(Wasd, "Up"),
+        Key::parse(Wasd, "Up").map_err(|e| e.to_string()),
         Err("key `Up` is not one of W, A, S, D, Brush".to_string())
     );
     assert!(Key::parse(Arrows, "w").is_err());

@@ -1,4 +1,4 @@
-//! Errors of scenario loading, set-up, building preparation and output.
+//! Errors of scenario loading, set-up and output.
 
 use thiserror::Error;
 
@@ -23,9 +23,6 @@ pub enum SimError {
         /// What.
         message: String,
     },
-    /// The building could not be prepared.
-    #[error("building: {0}")]
-    Building(String),
     /// Reading or writing a file.
     #[error("{path}: {message}")]
     Io {
@@ -34,7 +31,7 @@ pub enum SimError {
         /// What.
         message: String,
     },
-    /// POI enrichment or write-back.
+    /// A robot profile could not be read.
     #[error(transparent)]
-    Poi(#[from] poinav_poi::PoiError),
+    Profile(#[from] poinav_roles::ProfileError),
 }

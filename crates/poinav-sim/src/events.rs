@@ -2,7 +2,7 @@
 //! clearance measurements, a robot's own C-2, contacts, zones entered, targets reached, keys and
 //! brush), each stamped with step, time and robot, rendered as deterministic JSON.
 
-use poinav_poi::{AccessibilityStatus, Role};
+use poinav_roles::{AccessibilityStatus, Role};
 
 use crate::trace::Json;
 

@@ -3,7 +3,7 @@
 
 use glam::DVec2;
 use poinav_nav::Floor;
-use poinav_poi::{AccessibilityStatus, Role};
+use poinav_roles::{AccessibilityStatus, Role};
 use serde::Deserialize;
 use serde_json::{json, Value};
 
@@ -157,27 +157,63 @@ impl Expect {
         }
     }
 
-    /// Checks names against the floor; the message says what is missing.
-    pub fn check(&self, floor: &Floor) -> Result<(), String> {
+    /// Checks names against the floor; the error says what is missing.
+    pub fn check(&self, floor: &Floor) -> Result<(), ExpectError> {
+        let on = || floor.name.clone();
         match self {
             Expect::ClearanceEstimate { door, .. } | Expect::DoorStatus { door, .. } => {
                 door_index(floor, door)
                     .map(|_| ())
-                    .ok_or_else(|| format!("no door `{door}` on floor `{}`", floor.name))
+                    .ok_or_else(|| ExpectError::NoDoor {
+                        door: door.clone(),
+                        floor: on(),
+                    })
             }
-            Expect::ReachesZone { zone, .. } => floor
-                .zone(zone)
-                .map(|_| ())
-                .ok_or_else(|| format!("no zone `{zone}` on floor `{}`", floor.name)),
+            Expect::ReachesZone { zone, .. } => {
+                floor
+                    .zone(zone)
+                    .map(|_| ())
+                    .ok_or_else(|| ExpectError::NoZone {
+                        zone: zone.clone(),
+                        floor: on(),
+                    })
+            }
             Expect::RoleBelowDistance { robots, .. } if robots.len() != 2 => {
-                Err("role-below-distance needs exactly two robots".into())
+                Err(ExpectError::NotTwoRobots)
             }
             Expect::LateralDistance { ray_deg, .. } if !RAY_DEG.contains(ray_deg) => {
-                Err(format!("ray_deg must be one of {RAY_DEG:?}"))
+                Err(ExpectError::NoSuchRay(*ray_deg))
             }
             _ => Ok(()),
         }
     }
+}
+
+/// An expectation that names what the floor does not have, or is malformed.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ExpectError {
+    /// No door by that name or GlobalId.
+    #[error("no door `{door}` on floor `{floor}`")]
+    NoDoor {
+        /// The door asked for.
+        door: String,
+        /// The floor's name.
+        floor: String,
+    },
+    /// No zone by that name or GlobalId.
+    #[error("no zone `{zone}` on floor `{floor}`")]
+    NoZone {
+        /// The zone asked for.
+        zone: String,
+        /// The floor's name.
+        floor: String,
+    },
+    /// `role-below-distance` names other than two robots.
+    #[error("role-below-distance needs exactly two robots")]
+    NotTwoRobots,
+    /// `lateral-distance` on a ray the sensor does not have (the ray asked for).
+    #[error("ray_deg must be one of {RAY_DEG:?}")]
+    NoSuchRay(f64),
 }
 
 /// One judged expectation.

@@ -367,7 +367,7 @@ fn check_names_what_is_missing() {
         tolerance_m: 0.05,
     };
     assert_eq!(
-        door.check(&floor),
+        door.check(&floor).map_err(|e| e.to_string()),
         Err("no door `Gate` on floor `test`".into())
     );
     let zone = Expect::ReachesZone {
@@ -376,7 +376,7 @@ fn check_names_what_is_missing() {
         within_s: None,
     };
     assert_eq!(
-        zone.check(&floor),
+        zone.check(&floor).map_err(|e| e.to_string()),
         Err("no zone `Attic` on floor `test`".into())
     );
     let one = Expect::RoleBelowDistance {
@@ -387,6 +387,7 @@ fn check_names_what_is_missing() {
     assert!(one
         .check(&floor)
         .unwrap_err()
+        .to_string()
         .contains("exactly two robots"));
     let ray = Expect::LateralDistance {
         robot: "A".into(),
@@ -400,5 +401,6 @@ fn check_names_what_is_missing() {
     assert!(ray
         .check(&floor)
         .unwrap_err()
+        .to_string()
         .starts_with("ray_deg must be one of"));
 }

@@ -6,22 +6,22 @@
 //! ```no_run
 //! use std::path::Path;
 //! let scenario = poinav_sim::Scenario::load(Path::new("scenarios/separation.toml"))?;
-//! let building = poinav_sim::prepare(&scenario, None, None)?;
-//! let outcome = poinav_sim::run(&scenario, None, &building.floor)?;
-//! poinav_sim::write_outputs(Path::new("out/separation"), &outcome, &building.floor)?;
+//! # fn floor() -> poinav_nav::Floor { unimplemented!() }
+//! // The floor comes from the building's preparation, `poinav_bridge::prepare`.
+//! let floor = floor();
+//! let outcome = poinav_sim::run(&scenario, None, &floor)?;
+//! poinav_sim::write_outputs(Path::new("out/separation"), &outcome, &floor)?;
 //! assert!(outcome.passed());
 //! # Ok::<(), poinav_sim::SimError>(())
 //! ```
 
 pub mod algorithm1;
-pub mod building;
 pub mod controller;
-pub mod demo_floor;
 mod error;
 pub mod events;
 pub mod expect;
 pub mod geometry;
-pub mod ifc_floor;
+mod key_error;
 pub mod neighbours;
 pub mod output;
 pub mod plot;
@@ -34,17 +34,15 @@ pub mod samples;
 pub mod scenario;
 pub mod sensor;
 pub mod step;
-pub mod terrain;
 #[cfg(test)]
 mod test_floor;
 pub mod trace;
-pub mod vertical;
 pub mod world;
 
-pub use building::{prepare, FloorFromModel, Prepared};
 pub use error::SimError;
 pub use events::{Event, EventKind};
-pub use output::{apply_findings, run_into, write_back, write_outputs};
+pub use key_error::KeyError;
+pub use output::{run_into, write_outputs};
 pub use recorder::{Recorder, RobotFigures, TraceOut};
 pub use run::{run, run_with, Outcome};
 pub use scenario::Scenario;

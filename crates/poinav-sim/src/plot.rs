@@ -9,7 +9,7 @@ use std::fmt::Write;
 use glam::DVec2;
 use poinav_io::xml::attr;
 use poinav_nav::Floor;
-use poinav_poi::AccessibilityStatus;
+use poinav_roles::AccessibilityStatus;
 
 use crate::geometry::{ring_centroid, Obb};
 use crate::poi_db::Element;

@@ -1,16 +1,15 @@
 //! The POI database Algorithm 1 queries (paper: `QueryDatabase(D, GUID)`): one
-//! [`Classified`] record per obstacle, door and zone of the floor, found by GlobalId or by the
-//! index the world reports, and changed at run time only through `poinav_poi::runtime::apply`
-//! (rule R5), the same code the write-back uses.
+//! [`PoiRecord`] per obstacle, door and zone of the floor, found by GlobalId or by the index the
+//! world reports, and changed at run time only through `poinav_roles::runtime::apply` (rule R5),
+//! the same code the write-back uses.
 
 use std::collections::BTreeMap;
 
-use poinav_ifc::EntityId;
 use poinav_nav::{Floor, ObstacleKind};
-use poinav_poi::runtime::{self, Observation, RuntimeChange};
-use poinav_poi::{
-    Accessibility, AccessibilityStatus, AppliesTo, Category, Classified, Coordination, Facts,
-    PoiType, Role, ValidationMethod,
+use poinav_roles::runtime::{self, Observation, RuntimeChange};
+use poinav_roles::{
+    Accessibility, AccessibilityStatus, AppliesTo, Category, Coordination, PoiRecord, PoiType,
+    Role, ValidationMethod,
 };
 
 /// A set of roles as bits (index in `Role::ALL`).
@@ -78,7 +77,7 @@ pub enum Start {
 /// The records of one floor.
 #[derive(Debug, Clone)]
 pub struct PoiDb {
-    records: Vec<Classified>,
+    records: Vec<PoiRecord>,
     roles: Vec<RoleSet>,
     by_id: BTreeMap<String, usize>,
     doors_at: usize,
@@ -98,28 +97,23 @@ fn split(roles: &[Role], start: Start) -> (Vec<Role>, Vec<Role>) {
 }
 
 fn record(
-    i: usize,
     global_id: &str,
     class: &str,
     name: Option<String>,
     category: Category,
     poi_type: PoiType,
     roles: (Vec<Role>, Vec<Role>),
-) -> Classified {
-    Classified {
-        id: EntityId(i as u64),
+) -> PoiRecord {
+    PoiRecord {
         global_id: global_id.to_string(),
         class: class.to_string(),
         name,
-        storey: None,
-        rule: "floor".into(),
         category,
         poi_type,
         primary: roles.0,
         conditional: roles.1,
         accessibility: None,
         coordination: None,
-        facts: Facts::default(),
     }
 }
 
@@ -137,9 +131,7 @@ impl PoiDb {
                     (Category::Structural, PoiType::TransitionElement)
                 }
             };
-            let i = records.len();
             records.push(record(
-                i,
                 &o.id,
                 &o.class,
                 None,
@@ -150,9 +142,7 @@ impl PoiDb {
         }
         let doors_at = records.len();
         for d in &floor.doors {
-            let i = records.len();
             let mut r = record(
-                i,
                 &d.id,
                 "IfcDoor",
                 d.name.clone(),
@@ -174,9 +164,7 @@ impl PoiDb {
         }
         let zones_at = records.len();
         for z in &floor.zones {
-            let i = records.len();
             let mut r = record(
-                i,
                 &z.id,
                 "IfcSpace",
                 z.name.clone(),
@@ -220,12 +208,12 @@ impl PoiDb {
     }
 
     /// The record with this GlobalId.
-    pub fn find(&self, global_id: &str) -> Option<&Classified> {
+    pub fn find(&self, global_id: &str) -> Option<&PoiRecord> {
         self.by_id.get(global_id).map(|&i| &self.records[i])
     }
 
     /// Record `i`.
-    pub fn get(&self, i: usize) -> &Classified {
+    pub fn get(&self, i: usize) -> &PoiRecord {
         &self.records[i]
     }
 
@@ -237,7 +225,7 @@ impl PoiDb {
 
     /// Applies rule R5 to record `i`.
     pub fn apply(&mut self, i: usize, observation: Observation) -> RuntimeChange {
-        let change = runtime::apply(&mut self.records[i], observation);
+        let change = runtime::apply(self.records[i].roles_mut(), observation);
         if !change.is_empty() {
             let r = &self.records[i];
             self.roles[i] = RoleSet::of(&r.primary).union(RoleSet::of(&r.conditional));
@@ -246,7 +234,7 @@ impl PoiDb {
     }
 
     /// Every record.
-    pub fn records(&self) -> &[Classified] {
+    pub fn records(&self) -> &[PoiRecord] {
         &self.records
     }
 }

@@ -2,7 +2,7 @@
 //! force over mass), its state (pose, speed, turn rate, odometer) and its brush.
 
 use glam::DVec2;
-use poinav_poi::RobotProfile;
+use poinav_roles::RobotProfile;
 
 use crate::geometry::Obb;
 

@@ -4,7 +4,7 @@
 
 use glam::DVec2;
 use poinav_nav::Floor;
-use poinav_poi::AccessibilityStatus;
+use poinav_roles::AccessibilityStatus;
 
 use crate::geometry::{point_in_ring, ring_centroid, ring_distance};
 

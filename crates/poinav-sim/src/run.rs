@@ -143,7 +143,7 @@ pub fn run_with(
     for e in &expects {
         e.expect
             .check(floor)
-            .map_err(|m| scenario.error(e.line, m))?;
+            .map_err(|m| scenario.error(e.line, m.to_string()))?;
     }
     if let Some(t) = &trace {
         if t.every == 0 {

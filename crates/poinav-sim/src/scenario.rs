@@ -5,7 +5,7 @@
 
 use std::path::{Path, PathBuf};
 
-use poinav_poi::RobotProfile;
+use poinav_roles::{ProfileError, RobotProfile};
 use serde::Deserialize;
 use toml::Spanned;
 
@@ -16,7 +16,8 @@ use crate::expect::Expect;
 use crate::poi_db::Start;
 use crate::step::{RobotSetup, DT};
 
-/// Options of the paper's test building (`poinav demo-building`); unset ones keep defaults.
+/// Options of the paper's test building (`poinav demo-building`); unset ones keep defaults
+/// (`poinav_bridge::demo_floor::demo_spec` makes the building).
 #[derive(Debug, Clone, PartialEq, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct DemoParams {
@@ -28,26 +29,6 @@ pub struct DemoParams {
     pub door_width_m: Option<f64>,
     /// Corridor width.
     pub corridor_width_m: Option<f64>,
-}
-
-impl DemoParams {
-    /// The building these options describe.
-    pub fn building(&self) -> poinav_author::DemoBuilding {
-        let mut b = poinav_author::DemoBuilding::default();
-        if let Some(v) = self.rooms_per_side {
-            b.rooms_per_side = v;
-        }
-        if let Some(v) = self.room2_door_width_m {
-            b.room2_door_width_m = v;
-        }
-        if let Some(v) = self.door_width_m {
-            b.door_width_m = v;
-        }
-        if let Some(v) = self.corridor_width_m {
-            b.corridor_width_m = v;
-        }
-        b
-    }
 }
 
 /// A design change applied before enrichment (`poinav patch door-width`).
@@ -303,7 +284,7 @@ impl Scenario {
             if robots.iter().any(|e| e.setup.name == r.name) {
                 return Err(err(line, format!("robot `{}` is declared twice", r.name)));
             }
-            let profile = load_profile(&r.profile, dir).map_err(|m| err(line, m))?;
+            let profile = load_profile(&r.profile, dir).map_err(|e| err(line, e.to_string()))?;
             if let ControllerSpec::Keys { scheme, script } = &r.controller {
                 for k in script {
                     Key::parse(*scheme, &k.key)
@@ -436,11 +417,11 @@ impl Scenario {
 }
 
 /// `paper` or a profile file relative to `dir`.
-pub fn load_profile(name: &str, dir: &Path) -> Result<RobotProfile, String> {
+pub fn load_profile(name: &str, dir: &Path) -> Result<RobotProfile, ProfileError> {
     if name == "paper" {
         return Ok(RobotProfile::paper());
     }
-    RobotProfile::load(&dir.join(name)).map_err(|e| e.to_string())
+    RobotProfile::load(&dir.join(name))
 }
 
 #[cfg(test)]

@@ -6,8 +6,8 @@
 
 use glam::DVec2;
 use poinav_nav::Floor;
-use poinav_poi::runtime::Observation;
-use poinav_poi::RobotProfile;
+use poinav_roles::runtime::Observation;
+use poinav_roles::RobotProfile;
 
 use rayon::prelude::*;
 
@@ -326,7 +326,7 @@ impl<'f> Sim<'f> {
         for s in setups {
             let limits = Limits::new(&s.profile, s.drive_force_n, s.brake_force_n);
             let global_id = s.global_id.clone().unwrap_or_else(|| {
-                poinav_ifc::GlobalId::from_name("poinav-sim/robot", &s.name).to_string()
+                poinav_io::GlobalId::from_name("poinav-sim/robot", &s.name).to_string()
             });
             let robot = Robot {
                 name: s.name.clone(),
@@ -393,7 +393,7 @@ impl<'f> Sim<'f> {
                 ControllerSpec::Keys { scheme, script } => {
                     let mut keys = Vec::new();
                     for k in script {
-                        let key = Key::parse(*scheme, &k.key).map_err(err)?;
+                        let key = Key::parse(*scheme, &k.key).map_err(|e| err(e.to_string()))?;
                         keys.push((k.t, key, k.down, k.key.clone()));
                     }
                     Controller::keys(keys)

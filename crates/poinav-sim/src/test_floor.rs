@@ -3,10 +3,9 @@
 
 use glam::DVec2;
 use poinav_nav::{Floor, FloorDoor, FloorObstacle, FloorZone, ObstacleKind};
-use poinav_poi::{AccessibilityStatus, CoordinationProtocol, RobotProfile, Role};
+use poinav_roles::{AccessibilityStatus, CoordinationProtocol, RobotProfile, Role};
 
 use crate::algorithm1::{self, Behaviour, Env, Mind, PendingClearance, Perception, Sink};
-pub(crate) use crate::demo_floor::rect;
 use crate::events::Event;
 use crate::geometry::Obb;
 use crate::poi_db::{PoiDb, Start};
@@ -14,6 +13,30 @@ use crate::robot::{Brush, Limits, Robot, RobotState};
 use crate::route::NavGraph;
 use crate::sensor::{self, RANGE_M};
 use crate::world::World;
+pub(crate) use poinav_nav::polygon::rect;
+
+/// The test building's floors as `poinav_bridge::prepare` makes them for the scenarios the unit
+/// tests run (the simulator cannot make them: it knows no IFC), by scenario name and variant.
+/// The bridge's unit test `sim_fixtures_are_what_prepare_makes` keeps them current
+/// (`POINAV_BLESS=1` rewrites them).
+const PREPARED: &[(&str, Option<&str>, &str)] = &[
+    ("doors", None, include_str!("../testdata/doors.floor.json")),
+    (
+        "doorway",
+        Some("door-0.80"),
+        include_str!("../testdata/doorway-door-0.80.floor.json"),
+    ),
+    ("yield", None, include_str!("../testdata/yield.floor.json")),
+];
+
+/// The floor `poinav_bridge::prepare` makes for `scenario`'s `variant` (one of [`PREPARED`]).
+pub(crate) fn prepared(scenario: &crate::Scenario, variant: Option<&str>) -> Floor {
+    let (_, _, json) = PREPARED
+        .iter()
+        .find(|(n, v, _)| *n == scenario.name && *v == variant)
+        .unwrap_or_else(|| panic!("no prepared floor for `{}` {variant:?}", scenario.name));
+    serde_json::from_str(json).expect("a floor")
+}
 
 /// A wall with one ring.
 pub(crate) fn wall(id: &str, ring: Vec<DVec2>) -> FloorObstacle {

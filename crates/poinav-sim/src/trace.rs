@@ -645,7 +645,7 @@ mod tests {
         let (mut lines, mut with_events, mut through, mut robot_hits) = (0, 0, 0, 0);
         for (file, variant) in [("doorway.toml", Some("door-0.80")), ("yield.toml", None)] {
             let scenario = crate::Scenario::load(&dir.join(file)).unwrap();
-            let floor = crate::prepare(&scenario, variant, None).unwrap().floor;
+            let floor = crate::test_floor::prepared(&scenario, variant);
             let setups: Vec<_> = scenario.robots.iter().map(|r| r.setup.clone()).collect();
             let mut sim = crate::Sim::new(&floor, &setups, crate::SimOptions::default()).unwrap();
             let names = sim.names();

@@ -10,7 +10,8 @@
 
 use std::path::{Path, PathBuf};
 
-use poinav_sim::{prepare, run, EventKind, Outcome, Scenario};
+use poinav_bridge::prepare;
+use poinav_sim::{run, EventKind, Outcome, Scenario};
 use serde_json::Value;
 
 const WIDTHS: [f64; 7] = [0.70, 0.77, 0.81, 0.90, 1.00, 1.20, 1.30];
@@ -30,9 +31,8 @@ fn simulate(dir: &Path, name: &str, toml: &str) -> Outcome {
     let path = dir.join(format!("{name}.toml"));
     std::fs::write(&path, toml).unwrap();
     let s = Scenario::load(&path).unwrap();
-    let converter = poinav_sim::ifc_floor::converter();
-    let prepared = prepare(&s, None, Some(&converter)).unwrap();
-    run(&s, None, &prepared.floor).unwrap()
+    let prepared = prepare(&s, None).unwrap();
+    run(&s, None, prepared.floor()).unwrap()
 }
 
 fn failed(o: &Outcome) -> Vec<String> {

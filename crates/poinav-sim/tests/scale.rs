@@ -6,7 +6,8 @@
 
 use std::path::Path;
 
-use poinav_sim::{prepare, run, run_into, run_with, Outcome, Scenario, TraceOut};
+use poinav_bridge::prepare;
+use poinav_sim::{run, run_into, run_with, Outcome, Scenario, TraceOut};
 
 /// 200 robots, five in each of the 40 rooms of a 20-rooms-per-side test building, each driving
 /// to another room through the corridor (a C-1 zone): doors measured by many robots at once,
@@ -49,7 +50,7 @@ fn summary(o: &Outcome) -> String {
 #[test]
 fn two_hundred_robots_give_the_same_bytes_on_one_two_and_four_threads() {
     let s = crowd();
-    let floor = prepare(&s, None, None).unwrap().floor;
+    let floor = prepare(&s, None).unwrap().floor().clone();
     let runs: Vec<Outcome> = [1, 2, 4]
         .into_iter()
         .map(|threads| {
@@ -87,7 +88,7 @@ fn two_hundred_robots_give_the_same_bytes_on_one_two_and_four_threads() {
 #[test]
 fn a_thinned_trace_keeps_every_nth_step_of_the_full_one() {
     let s = crowd();
-    let floor = prepare(&s, None, None).unwrap().floor;
+    let floor = prepare(&s, None).unwrap().floor().clone();
     let full = run(&s, None, &floor).unwrap();
     let mut thin: Vec<u8> = Vec::new();
     let out = TraceOut {
@@ -114,7 +115,7 @@ fn a_thinned_trace_keeps_every_nth_step_of_the_full_one() {
 #[test]
 fn without_a_trace_summary_expectations_and_plots_are_unchanged() {
     let s = crowd();
-    let floor = prepare(&s, None, None).unwrap().floor;
+    let floor = prepare(&s, None).unwrap().floor().clone();
     let with = tempfile::tempdir().unwrap();
     let without = tempfile::tempdir().unwrap();
     let (a, _) = run_into(with.path(), &s, None, &floor, Some(1)).unwrap();
@@ -182,7 +183,7 @@ fn door_crowd() -> Scenario {
 #[test]
 fn a_crowd_at_the_doors_decides_as_before_the_grid_lookup() {
     let s = door_crowd();
-    let floor = prepare(&s, None, None).unwrap().floor;
+    let floor = prepare(&s, None).unwrap().floor().clone();
     let o = run(&s, None, &floor).unwrap();
     let c2: Vec<(u64, u32)> = o
         .events()

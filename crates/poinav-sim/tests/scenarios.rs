@@ -4,11 +4,12 @@
 
 use std::path::{Path, PathBuf};
 
+use poinav_bridge::{prepare, write_back, Prepared};
 use poinav_ifc::property::{property_sets, PropertyValue, Scalar};
 use poinav_ifc::Model;
 use poinav_poi::WriteOptions;
 use poinav_sim::geometry::{polygon_gap, Obb};
-use poinav_sim::{prepare, run, write_back, write_outputs, Outcome, Prepared, Scenario};
+use poinav_sim::{run, write_outputs, Outcome, Scenario};
 use serde_json::Value;
 
 fn scenario(name: &str) -> Scenario {
@@ -26,10 +27,10 @@ struct Run {
 }
 
 fn simulate(s: &Scenario, variant: Option<&str>) -> Run {
-    let prepared = prepare(s, variant, None).unwrap();
-    let outcome = run(s, variant, &prepared.floor).unwrap();
+    let prepared = prepare(s, variant).unwrap();
+    let outcome = run(s, variant, prepared.floor()).unwrap();
     let dir = tempfile::tempdir().unwrap();
-    write_outputs(dir.path(), &outcome, &prepared.floor).unwrap();
+    write_outputs(dir.path(), &outcome, prepared.floor()).unwrap();
     let text = std::fs::read_to_string(dir.path().join("trace.jsonl")).unwrap();
     let trace = text
         .lines()
@@ -116,7 +117,7 @@ fn doorway_measures_the_clear_width_and_restricts_the_narrow_door() {
         assert!(r.outcome.passed(), "{variant}: {:#?}", r.outcome.judged);
         let door = r
             .prepared
-            .floor
+            .floor()
             .doors
             .iter()
             .find(|d| d.name.as_deref() == Some("Door Room 2"))
@@ -272,7 +273,7 @@ fn wall_following_keeps_half_a_metre_and_reaches_the_room() {
     assert!(r.outcome.passed(), "{:#?}", r.outcome.judged);
     let north_wall_face = r
         .prepared
-        .floor
+        .floor()
         .zones
         .iter()
         .find(|z| z.name.as_deref() == Some("Corridor"))

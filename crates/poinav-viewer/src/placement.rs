@@ -6,7 +6,7 @@
 
 use glam::DVec2;
 use poinav_nav::Floor;
-use poinav_poi::RobotProfile;
+use poinav_roles::RobotProfile;
 use poinav_sim::controller::{ControllerSpec, KeyScheme};
 use poinav_sim::RobotSetup;
 

@@ -9,7 +9,7 @@ use std::time::{Duration, Instant};
 use futures_util::{SinkExt, StreamExt};
 use glam::DVec2;
 use poinav_nav::{Floor, FloorObstacle, FloorZone, ObstacleKind};
-use poinav_poi::{RobotProfile, Role};
+use poinav_roles::{RobotProfile, Role};
 use poinav_sim::SimOptions;
 use poinav_viewer::{ModelChunk, ServerConfig, ViewStorey, Viewer};
 use serde_json::Value;

@@ -138,7 +138,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         if name == "doorway" {
             if let Some(first) = runs.first() {
                 let back = out.join("doorway-sensor-findings.ifc");
-                poinav_sim::write_back(
+                poinav_bridge::write_back(
                     &first.building.model,
                     &first.building.classification,
                     &first.outcome,

@@ -208,28 +208,18 @@ fn load(
         &poinav_geom::PlanOptions::default(),
         &tick,
     );
-    let (building, dropped) =
-        poinav_sim::ifc_floor::building_from_plans(&model, &c, &meshes, &plans);
+    let stages = poinav_bridge::Stages { meshes, plans };
+    let made = poinav_bridge::building(&model, &c, &stages);
     crate::progress::end();
-    let mut warnings: Vec<Warning> = dropped
+    let mut warnings: Vec<Warning> = made
+        .dropped
         .iter()
         .map(|d| {
-            let name = match &d.name {
-                Some(n) => format!("{n} ({})", d.id),
-                None => d.id.clone(),
-            };
-            Warning::of(
-                &d.id,
-                Some(d.kind.label().to_string()),
-                format!(
-                    "{} {name} is left out, it connects no storeys: {}",
-                    d.kind.label(),
-                    d.reason
-                ),
-            )
-            .grouped_by(format!("left out, it connects no storeys: {}", d.reason))
+            Warning::of(&d.id, Some(d.kind.label().to_string()), d.message()).grouped_by(d.group())
         })
         .collect();
+    let building = made.building;
+    let meshes = stages.meshes;
     warnings.extend(building.diagnostics().into_iter().map(Warning::plain));
     let meshed = meshes.elements.len() + meshes.spaces.len();
     Ok((building, warnings, (meshed, meshes.failures.len())))

@@ -54,8 +54,9 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         &crate::progress::tick,
     );
     crate::progress::end();
-    let plan =
-        poinav_sim::ifc_floor::pick(&plans, args.storey.as_deref()).map_err(anyhow::Error::msg)?;
+    let storeys: Vec<poinav_bridge::StoreyKey> =
+        plans.iter().map(poinav_bridge::StoreyKey::of).collect();
+    let plan = &plans[poinav_bridge::pick(&storeys, args.storey.as_deref())?];
     let warnings: Vec<Warning> = plan
         .problems
         .iter()

@@ -12,7 +12,7 @@ use anyhow::Context;
 use poinav_export::glb::GlbOptions;
 use poinav_export::glb_chunks::to_glb_per_storey;
 use poinav_export::scene::NO_STOREY;
-use poinav_geom::{floor_plans_with_meshes, mesh_model, PlanOptions};
+use poinav_geom::{mesh_model, ModelMeshes};
 use poinav_ifc::property::{property_sets, PropertyValue, Scalar, TypedScalar};
 use poinav_ifc::{spatial, units, Model};
 use poinav_poi::{classify, Classification};
@@ -96,13 +96,16 @@ struct Shown {
     current: usize,
 }
 
-/// What the viewer shows of `model`, with `storey` (else the default storey) first.
-fn building(
+/// What the viewer shows of `model`: its GLB and click-to-inspect data from `meshes`, and the
+/// floors of `building` (the bridge's, [`poinav_bridge::building`]) with `current` first.
+fn shown(
     model: &Model,
     classification: &Classification,
-    storey: Option<&str>,
-) -> anyhow::Result<Shown> {
-    let mut meshes = mesh_model(model);
+    mut meshes: ModelMeshes,
+    building: poinav_nav::Building,
+    storeys: &[poinav_bridge::StoreyKey],
+    current: usize,
+) -> Shown {
     let unit = units::length_unit(model);
     let structure = spatial::spatial_structure(model, &unit);
     let storey_name = |id| {
@@ -152,16 +155,6 @@ fn building(
         }
         elements.insert(e.global_id.clone(), info);
     }
-    let plans = floor_plans_with_meshes(model, &meshes, &PlanOptions::default());
-    let plan = poinav_sim::ifc_floor::pick(&plans, storey).map_err(anyhow::Error::msg)?;
-    let current = plans
-        .iter()
-        .position(|p| std::ptr::eq(p, plan))
-        .unwrap_or(0);
-    let floors = plans
-        .iter()
-        .map(|p| poinav_sim::ifc_floor::floor_from_plan(p, classification))
-        .collect();
     // One GLB per storey, so the page draws the simulated storey before the rest arrives.
     let model = to_glb_per_storey(
         &structure.storeys,
@@ -173,7 +166,7 @@ fn building(
     .map(|c| {
         let storey = c.storey.map(|g| &structure.storeys[g]);
         ModelChunk {
-            storey: storey.and_then(|s| plans.iter().position(|p| p.storey == s.id)),
+            storey: storey.and_then(|s| floor_of(storeys, s)),
             name: storey.map_or(NO_STOREY.to_string(), |s| s.label()),
             elevation_m: storey
                 .and_then(|s| s.elevation_m)
@@ -184,12 +177,24 @@ fn building(
         }
     })
     .collect();
-    Ok(Shown {
+    Shown {
         model,
         elements,
-        floors,
+        floors: building.floors,
         current,
-    })
+    }
+}
+
+/// The floor of `storey` among the bridge's `storeys`: by GlobalId, else by name.
+fn floor_of(storeys: &[poinav_bridge::StoreyKey], storey: &spatial::Storey) -> Option<usize> {
+    storeys
+        .iter()
+        .position(|k| k.global_id.is_some() && k.global_id == storey.global_id)
+        .or_else(|| {
+            storeys
+                .iter()
+                .position(|k| k.name.is_some() && k.name == storey.name)
+        })
 }
 
 fn scenario_robots(s: &Scenario) -> (Vec<RobotSetup>, SimOptions) {
@@ -209,33 +214,57 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     let profile = crate::profile(args.profile.as_deref())?;
     let rules = crate::rules(args.rules.as_deref())?;
     let scenario = args.scenario.as_deref().map(Scenario::load).transpose()?;
-    let (model, classification, title) = match (&args.file, &scenario) {
-        (Some(file), _) => {
-            let model = Model::open(file)?;
-            let c = classify(&model, &rules, &profile);
-            (model, c, file.display().to_string())
-        }
-        (None, Some(s)) => {
-            let converter = poinav_sim::ifc_floor::converter();
-            let p = poinav_sim::prepare(s, None, Some(&converter))?;
-            (
-                p.model,
-                p.classification,
-                format!("{} (scenario building)", s.name),
-            )
-        }
-        (None, None) => anyhow::bail!("give an IFC file or --scenario"),
-    };
     let storey = args
         .storey
         .as_deref()
         .or(scenario.as_ref().and_then(|s| s.building.storey.as_deref()));
+    let (model, classification, made, title) = match (&args.file, &scenario) {
+        (Some(file), _) => {
+            let model = Model::open(file)?;
+            let c = classify(&model, &rules, &profile);
+            let stages = poinav_bridge::Stages::of(&model);
+            let made = poinav_bridge::building(&model, &c, &stages);
+            let current = poinav_bridge::pick(&made.storeys, storey)?;
+            let title = file.display().to_string();
+            (
+                model,
+                c,
+                (made.building, made.storeys, current, Some(stages.meshes)),
+                title,
+            )
+        }
+        (None, Some(s)) => {
+            // The floors `poinav simulate` runs the scenario on, not another recipe's.
+            let p = poinav_bridge::prepare(s, None)?;
+            let current = match args.storey.as_deref() {
+                Some(name) => poinav_bridge::pick(&p.storeys, Some(name))?,
+                None => p.current,
+            };
+            let title = format!("{} (scenario building)", s.name);
+            (
+                p.model,
+                p.classification,
+                (p.building, p.storeys, current, None),
+                title,
+            )
+        }
+        (None, None) => anyhow::bail!("give an IFC file or --scenario"),
+    };
+    let (building, storey_keys, current, meshes) = made;
+    let meshes = meshes.unwrap_or_else(|| mesh_model(&model));
     let Shown {
         model,
         elements,
         floors,
         current,
-    } = building(&model, &classification, storey)?;
+    } = shown(
+        &model,
+        &classification,
+        meshes,
+        building,
+        &storey_keys,
+        current,
+    );
     let (scenario_setups, options, source) = match &scenario {
         Some(s) => {
             let (r, o) = scenario_robots(s);

@@ -6,7 +6,8 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use anyhow::Context;
-use poinav_sim::{Outcome, Prepared, Scenario};
+use poinav_bridge::Prepared;
+use poinav_sim::{Outcome, Scenario};
 
 /// Arguments of `poinav simulate`.
 #[derive(Debug, clap::Args)]
@@ -40,12 +41,11 @@ pub struct Args {
 
 /// Writes the ROS 2 recording of `run` (its trace.jsonl, floor and Nav2 map) to `path`.
 fn write_mcap(scenario: &Scenario, run: &VariantRun, path: &Path) -> anyhow::Result<()> {
-    let profile = poinav_sim::scenario::load_profile(&scenario.building.profile, &scenario.dir)
-        .map_err(anyhow::Error::msg)?;
+    let profile = poinav_sim::scenario::load_profile(&scenario.building.profile, &scenario.dir)?;
     let options = poinav_nav::Nav2Options::default();
-    let map = poinav_mcap::storey_map(&run.building.floor, &profile, &options)?;
+    let map = poinav_mcap::storey_map(run.building.floor(), &profile, &options)?;
     let scene = poinav_mcap::Scene {
-        floor: &run.building.floor,
+        floor: run.building.floor(),
         map: &map,
         dt: scenario.dt,
     };
@@ -98,11 +98,10 @@ pub fn run_scenario_with(
             .map(|v| Some(v.to_string()))
             .collect(),
     };
-    let converter = poinav_sim::ifc_floor::converter();
     let mut runs = Vec::new();
     for variant in names {
         crate::progress::stage("preparing");
-        let building = poinav_sim::prepare(scenario, variant.as_deref(), Some(&converter))?;
+        let building = poinav_bridge::prepare(scenario, variant.as_deref())?;
         let dir = match &variant {
             Some(v) => out.join(v),
             None => out.to_path_buf(),
@@ -112,7 +111,7 @@ pub fn run_scenario_with(
             &dir,
             scenario,
             variant.as_deref(),
-            &building.floor,
+            building.floor(),
             trace_every,
         )?;
         crate::progress::end();
@@ -170,7 +169,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
                 (Some(v), n) if n > 1 => target.with_extension(format!("{v}.ifc")),
                 _ => target.clone(),
             };
-            let editor = poinav_sim::write_back(
+            let editor = poinav_bridge::write_back(
                 &r.building.model,
                 &r.building.classification,
                 &r.outcome,

@@ -24,7 +24,8 @@ fn full_access_doors_are_open_and_blocked_doors_closed_in_every_corpus_grid() {
         let name = file.file_stem().unwrap().to_string_lossy().into_owned();
         let model = Model::open(&file).unwrap();
         let c = classify(&model, &RuleSet::defaults(), &profile);
-        let building = poinav_sim::ifc_floor::building_of(&model, &c);
+        let building =
+            poinav_bridge::building(&model, &c, &poinav_bridge::Stages::of(&model)).building;
         if building.floors.iter().all(|f| f.doors.is_empty()) {
             continue;
         }

@@ -142,13 +142,15 @@ fn an_unknown_name_or_storey_exits_2_and_an_unreachable_goal_exits_1() {
     let wide = dir.path().join("wide.toml");
     std::fs::write(
         &wide,
-        std::fs::read_to_string(common::root().join("crates/poinav-poi/profiles/paper-robot.toml"))
-            .unwrap()
-            .replace("width_m = 0.70", "width_m = 1.50")
-            .replace(
-                "min_clearance_width_m = 0.90",
-                "min_clearance_width_m = 1.70",
-            ),
+        std::fs::read_to_string(
+            common::root().join("crates/poinav-roles/profiles/paper-robot.toml"),
+        )
+        .unwrap()
+        .replace("width_m = 0.70", "width_m = 1.50")
+        .replace(
+            "min_clearance_width_m = 0.90",
+            "min_clearance_width_m = 1.70",
+        ),
     )
     .unwrap();
     let (code, out, err) = run(&[

@@ -15,12 +15,11 @@ use poinav_sim::Scenario;
 
 /// The Nav2 map (map.pgm, map.yaml) of the scenario variant's storey for its profile.
 fn nav2_map(scenario: &Scenario, variant: Option<&str>, dir: &Path) -> (PathBuf, PathBuf) {
-    let converter = poinav_sim::ifc_floor::converter();
-    let prepared = poinav_sim::prepare(scenario, variant, Some(&converter)).unwrap();
+    let prepared = poinav_bridge::prepare(scenario, variant).unwrap();
     let profile =
         poinav_sim::scenario::load_profile(&scenario.building.profile, &scenario.dir).unwrap();
     let summary = poinav_nav::write_bundle(
-        &Building::single(prepared.floor),
+        &Building::single(prepared.floor().clone()),
         &profile,
         &Nav2Options::default(),
         dir,

@@ -469,7 +469,8 @@ fn corpus_route_graphs_carry_the_roles_operations_and_the_routes_rooms() {
         let clock = std::time::Instant::now();
         let model = Model::open(poinav_testkit::corpus_file(file)).unwrap();
         let c = classify(&model, &RuleSet::defaults(), &paper);
-        let building = poinav_sim::ifc_floor::building_of(&model, &c);
+        let building =
+            poinav_bridge::building(&model, &c, &poinav_bridge::Stages::of(&model)).building;
         assert!(building.floors.len() >= 2, "{file}: a multi-storey model");
         let built = clock.elapsed().as_secs_f64();
         for profile in [&paper, &legged] {

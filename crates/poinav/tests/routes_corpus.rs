@@ -158,7 +158,7 @@ fn measure(file: &str, options: &NavOptions, cache: &mut Cache) -> Measured {
     let model = Model::open(&path).unwrap();
     let profile = RobotProfile::paper();
     let c = classify(&model, &RuleSet::defaults(), &profile);
-    let building = poinav_sim::ifc_floor::building_of(&model, &c);
+    let building = poinav_bridge::building(&model, &c, &poinav_bridge::Stages::of(&model)).building;
     let nav = Navigator::new(&building, &profile, options).unwrap();
     let t = &nav.topology;
     let label = |fi: usize, z: usize| {
@@ -367,7 +367,8 @@ fn routes_from_outside_enter_by_an_entrance_within_5_percent() {
         let path = common::shared().join("ifc").join(file);
         let model = Model::open(&path).unwrap();
         let c = classify(&model, &RuleSet::defaults(), &profile);
-        let building = poinav_sim::ifc_floor::building_of(&model, &c);
+        let building =
+            poinav_bridge::building(&model, &c, &poinav_bridge::Stages::of(&model)).building;
         let nav = Navigator::new(&building, &profile, &length_only()).unwrap();
         let t = &nav.topology;
         let entrances: Vec<usize> = t.entrances().into_iter().filter(|&n| nav.open[n]).collect();

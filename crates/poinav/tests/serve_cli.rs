@@ -82,3 +82,75 @@ fn bad_input_exits_2_with_the_reason() {
     assert_eq!(code, 2, "{err}");
     assert!(err.contains("<FILE>"), "{err}");
 }
+
+/// Doors, zones and outlines of `floor` as `/api/scene` shows them (ids and rings).
+fn floor_view(floor: &poinav_nav::Floor) -> Value {
+    let ring = |r: &[glam::DVec2]| r.iter().map(|p| [p.x, p.y]).collect::<Vec<_>>();
+    let outlines = |structure: bool| -> Vec<Value> {
+        floor
+            .obstacles
+            .iter()
+            .filter(|o| (o.kind == poinav_nav::ObstacleKind::Structure) == structure)
+            .flat_map(|o| {
+                o.rings
+                    .iter()
+                    .filter(|r| r.len() >= 3)
+                    .map(|r| serde_json::json!({"id": o.id, "ring": ring(r)}))
+            })
+            .collect()
+    };
+    serde_json::json!({
+        "storey": floor.name,
+        "doors": floor.doors.iter().map(|d| serde_json::json!({"id": d.id, "ring": ring(&d.ring)})).collect::<Vec<_>>(),
+        "zones": floor.zones.iter().map(|z| serde_json::json!({"id": z.id, "ring": ring(&z.ring)})).collect::<Vec<_>>(),
+        "structure": outlines(true),
+        "obstacles": outlines(false),
+    })
+}
+
+/// The same fields of a scene storey.
+fn scene_view(storey: &Value) -> Value {
+    let pick = |list: &Value| -> Vec<Value> {
+        list.as_array()
+            .unwrap()
+            .iter()
+            .map(|x| serde_json::json!({"id": x["id"], "ring": x["ring"]}))
+            .collect()
+    };
+    serde_json::json!({
+        "storey": storey["storey"],
+        "doors": pick(&storey["doors"]),
+        "zones": pick(&storey["zones"]),
+        "structure": pick(&storey["structure"]),
+        "obstacles": pick(&storey["obstacles"]),
+    })
+}
+
+#[test]
+fn serve_runs_a_scenario_on_the_floor_simulate_prepares() {
+    // `poinav simulate` runs on `poinav_bridge::prepare`'s floor; `serve --scenario` must show
+    // and drive the same one (it used to cut the test building's IFC plan again instead).
+    let dir = tempfile::tempdir().unwrap();
+    let (_, text) = poinav_sim::SHIPPED
+        .iter()
+        .find(|(n, _)| *n == "separation")
+        .unwrap();
+    let file = dir.path().join("separation.toml");
+    std::fs::write(&file, text).unwrap();
+    let scenario = poinav_sim::Scenario::load(&file).unwrap();
+    let prepared = poinav_bridge::prepare(&scenario, None).unwrap();
+    let expected = floor_view(prepared.floor()).to_string();
+
+    let server = serve(&["--scenario".as_ref(), file.as_os_str()], dir.path()).unwrap();
+    let (status, body) = get(&server.addr, "/api/scene");
+    assert_eq!(status, 200);
+    let scene: Value = serde_json::from_slice(&body).unwrap();
+    assert_eq!(scene["storeys"].as_array().unwrap().len(), 1);
+    assert_eq!(scene["current"], 0);
+    let shown = scene_view(&scene).to_string();
+    assert_eq!(shown, expected);
+    // The test building: 4 exterior and 2 corridor walls, 2 x 3 rooms' doors and partitions.
+    assert_eq!(prepared.floor().doors.len(), 6);
+    assert_eq!(prepared.floor().zones.len(), 7);
+    assert_eq!(scene["robots"].as_array().unwrap().len(), 2);
+}

@@ -27,7 +27,7 @@ fn audit_and_nav2_json_list_a_door_given_up_on_and_warn() {
     let model = Model::open(&ifc).unwrap();
     let profile = RobotProfile::paper();
     let c = classify(&model, &RuleSet::defaults(), &profile);
-    let building = poinav_sim::ifc_floor::building_of(&model, &c);
+    let building = poinav_bridge::building(&model, &c, &poinav_bridge::Stages::of(&model)).building;
     let wide = building.floors[0]
         .doors
         .iter()
@@ -112,7 +112,8 @@ fn corpus_buildings_hit_no_bound() {
         let file = common::shared().join("ifc").join(format!("{name}.ifc"));
         let model = Model::open(&file).unwrap();
         let c = classify(&model, &RuleSet::defaults(), &profile);
-        let building = poinav_sim::ifc_floor::building_of(&model, &c);
+        let building =
+            poinav_bridge::building(&model, &c, &poinav_bridge::Stages::of(&model)).building;
         let nav = Navigator::new(&building, &profile, &NavOptions::default()).unwrap();
         assert!(nav.gave_up.is_empty(), "{name}: {:?}", nav.gave_up);
         let grids: Vec<_> = nav.floors.iter().map(|f| f.grid.occupancy.len()).collect();

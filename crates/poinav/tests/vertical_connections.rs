@@ -23,9 +23,10 @@ fn corpus(name: &str) -> String {
 
 /// The paper robot's profile with `locomotion = "legged"`, written into `dir`.
 fn legged_profile(dir: &Path) -> String {
-    let paper =
-        std::fs::read_to_string(common::root().join("crates/poinav-poi/profiles/paper-robot.toml"))
-            .unwrap();
+    let paper = std::fs::read_to_string(
+        common::root().join("crates/poinav-roles/profiles/paper-robot.toml"),
+    )
+    .unwrap();
     assert!(paper.contains("locomotion = \"wheeled\""), "{paper}");
     let legged = paper.replace("locomotion = \"wheeled\"", "locomotion = \"legged\"");
     let path = dir.join("legged.toml");

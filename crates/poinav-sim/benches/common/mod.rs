@@ -20,11 +20,14 @@ pub fn demo_floor() -> Floor {
         std::path::Path::new("."),
     )
     .unwrap();
-    poinav_sim::prepare(&scenario, None, None).unwrap().floor
+    poinav_bridge::prepare(&scenario, None)
+        .unwrap()
+        .floor()
+        .clone()
 }
 
 /// office-a.ifc's [`OFFICE_STOREY`], classified with the default rules and the paper's robot
-/// and converted by [`poinav_sim::ifc_floor::converter`].
+/// and built by [`poinav_bridge::building`], as `poinav simulate` prepares it.
 pub fn office_floor() -> Floor {
     let path = poinav_testkit::corpus_file("office-a.ifc");
     let bytes = std::fs::read(&path).unwrap_or_else(|e| {
@@ -35,7 +38,9 @@ pub fn office_floor() -> Floor {
     });
     let model = poinav_ifc::Model::from_bytes("office-a.ifc", bytes).unwrap();
     let classification = poinav_poi::classify(&model, &RuleSet::defaults(), &RobotProfile::paper());
-    poinav_sim::ifc_floor::converter()(&model, &classification, Some(OFFICE_STOREY)).unwrap()
+    let made = poinav_bridge::building(&model, &classification, &poinav_bridge::Stages::of(&model));
+    let i = poinav_bridge::pick(&made.storeys, Some(OFFICE_STOREY)).unwrap();
+    made.building.floors[i].clone()
 }
 
 /// Every obstacle edge of `floor` as `(a, b)`, degenerate edges left out (as the world index

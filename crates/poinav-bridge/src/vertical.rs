@@ -25,6 +25,8 @@ use poinav_ifc::{Entity, EntityId, Model};
 use poinav_nav::{ConnectionKind, Floor, FloorObstacle, Landing, ObstacleKind, VerticalConnection};
 use regex::Regex;
 
+use crate::dropped::{Dropped, DroppedKind};
+
 /// How far a stair's or ramp's lowest point may be from a storey's floor (metres).
 pub const STOREY_TOLERANCE_M: f64 = 0.35;
 /// How far above the top storey's floor a stair may reach (its railings), metres.
@@ -38,19 +40,6 @@ pub const SEARCH_REACH_M: f64 = 2.0;
 /// How much further than the clearance a stair's or ramp's landing stays from obstacles, so
 /// that it is traversable in the inflated grid whatever the cells, metres.
 pub const LANDING_SLACK_M: f64 = 0.1;
-
-/// A stair, ramp or lift found in the model that connects no storeys.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Dropped {
-    /// GlobalId.
-    pub id: String,
-    /// Name.
-    pub name: Option<String>,
-    /// What it would have been.
-    pub kind: ConnectionKind,
-    /// Why it was left out.
-    pub reason: String,
-}
 
 /// The vertical connections of a model and the candidates left out.
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -211,7 +200,7 @@ fn stairs_and_ramps(
             Err(reason) => out.dropped.push(Dropped {
                 id: g.id.clone(),
                 name: g.name.clone(),
-                kind: g.kind,
+                kind: DroppedKind::Connection(g.kind),
                 reason,
             }),
         }
@@ -666,7 +655,7 @@ fn lifts(
             out.dropped.push(Dropped {
                 id: first.id.clone(),
                 name: first.name.clone(),
-                kind: ConnectionKind::Lift,
+                kind: DroppedKind::Connection(ConnectionKind::Lift),
                 reason,
             });
             continue;

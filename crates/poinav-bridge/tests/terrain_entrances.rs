@@ -9,18 +9,19 @@
 use std::path::Path;
 
 use glam::DVec2;
+use poinav_bridge::terrain::{terrain_of, top_at, PROBE_M};
+use poinav_bridge::DroppedKind;
 use poinav_geom::{floor_plans_with_meshes, mesh_model, PlanOptions};
 use poinav_ifc::Model;
 use poinav_nav::audit::audit_profile;
 use poinav_nav::route::Place;
 use poinav_nav::{Building, CellState, Entrance, NavOptions, Navigator};
 use poinav_poi::{classify, RobotProfile, RuleSet};
-use poinav_sim::terrain::{terrain_of, top_at, PROBE_M};
 
 fn building(file: &Path, profile: &RobotProfile) -> Building {
     let model = Model::open(file).unwrap();
     let c = classify(&model, &RuleSet::defaults(), profile);
-    poinav_sim::ifc_floor::building_of(&model, &c)
+    poinav_bridge::building(&model, &c, &poinav_bridge::Stages::of(&model)).building
 }
 
 /// Per door with a side outside: (name, how it is entered), in the topology's order.
@@ -212,6 +213,37 @@ fn a_hillside_door_is_an_entrance_from_the_terrain() {
             label("before")
         );
     }
+
+    // A site body that cannot be meshed (a list inserted into its face set's attributes): the
+    // building leaves the terrain out and says so; no door opens onto it.
+    let site = dir.path().join(info["files"]["site"].as_str().unwrap());
+    let text = std::fs::read_to_string(&site).unwrap();
+    let at = text.find("IFCTRIANGULATEDFACESET(").unwrap();
+    let list = at + text[at..].find(",((").unwrap();
+    let damaged = format!("{}((1,2,999),{}", &text[..list + 3], &text[list + 3..]);
+    let model = Model::from_bytes("damaged-site.ifc", damaged.into_bytes()).unwrap();
+    let c = classify(&model, &RuleSet::defaults(), &paper);
+    let made = poinav_bridge::building(&model, &c, &poinav_bridge::Stages::of(&model));
+    let dropped: Vec<(DroppedKind, Option<&str>)> = made
+        .dropped
+        .iter()
+        .map(|d| (d.kind, d.name.as_deref()))
+        .collect();
+    assert_eq!(dropped, [(DroppedKind::Terrain, Some("Site"))]);
+    let d = &made.dropped[0];
+    assert_eq!(
+        Some(d.id.clone()),
+        model.instances_of("IfcSite")[0].global_id()
+    );
+    assert!(
+        d.reason
+            .ends_with(": IfcTriangulatedFaceSet has no usable `Coordinates`"),
+        "{}",
+        d.reason
+    );
+    assert!(d.message().starts_with("terrain Site ("), "{}", d.message());
+    let floors = &made.building.floors;
+    assert!(floors.iter().flat_map(|f| &f.doors).all(|d| !d.terrain));
 
     // Terrain at the upper storey's level beyond the hillside door, but over the ground
     // floor's roof slab there (a roof terrace, inside the building's footprint): no entrance.

@@ -11,6 +11,7 @@
 use std::path::{Path, PathBuf};
 
 use glam::DVec2;
+use poinav_bridge::DroppedKind;
 use poinav_geom::{floor_plans, PlanOptions, PlanSource};
 use poinav_ifc::Model;
 use poinav_nav::graph::{zone_at, NodeKind};
@@ -38,10 +39,11 @@ fn house(dir: &Path) -> PathBuf {
 fn building(file: &Path, profile: &RobotProfile) -> (Model, Building, Vec<String>) {
     let model = Model::open(file).unwrap();
     let c = classify(&model, &RuleSet::defaults(), profile);
-    let (b, dropped) = poinav_sim::ifc_floor::building_and_dropped(&model, &c);
+    let made = poinav_bridge::building(&model, &c, &poinav_bridge::Stages::of(&model));
+    let (b, dropped) = (made.building, made.dropped);
     let dropped = dropped
         .iter()
-        .filter(|d| d.kind != ConnectionKind::Lift)
+        .filter(|d| d.kind != DroppedKind::Connection(ConnectionKind::Lift))
         .map(|d| format!("{} {:?}: {}", d.id, d.name, d.reason))
         .collect();
     (model, b, dropped)

@@ -1,36 +1,38 @@
 //! The paper's test building as a [`Floor`], built from its [`Layout`] (walls as rectangles with
 //! door gaps, doors as their openings, rooms and the corridor as zones) with GlobalIds, door
 //! widths and POI roles read from the generated (and possibly patched and enriched) IFC, so ray
-//! hits name real GlobalIds. Interim: a general IFC storey -> Floor conversion belongs to
-//! poinav-nav (`Floor::from_plan`).
+//! hits name real GlobalIds. The one exception to [`crate::building`]: scenarios on the test
+//! building keep its exact rectangles (their expectations are measured on them).
 
 use std::collections::BTreeMap;
 
 use glam::DVec2;
 use poinav_author::DemoBuilding;
 use poinav_ifc::{units, Model};
+use poinav_nav::polygon::rect;
 use poinav_nav::{Floor, FloorDoor, FloorObstacle, FloorZone, ObstacleKind};
-use poinav_poi::{AccessibilityStatus, Classification, Classified, Role};
+use poinav_poi::{AccessibilityStatus, Classification, Classified};
+use poinav_sim::scenario::DemoParams;
 
-use crate::error::SimError;
+use crate::error::BridgeError;
+use crate::ifc_floor::roles;
 
-/// The axis-aligned rectangle `[x0, x1] x [y0, y1]` as a counter-clockwise ring.
-pub(crate) fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Vec<DVec2> {
-    vec![
-        DVec2::new(x0, y0),
-        DVec2::new(x1, y0),
-        DVec2::new(x1, y1),
-        DVec2::new(x0, y1),
-    ]
-}
-
-fn roles(c: Option<&Classified>) -> Vec<Role> {
-    let mut r: Vec<Role> = c
-        .map(|c| c.primary.iter().chain(&c.conditional).copied().collect())
-        .unwrap_or_default();
-    r.sort();
-    r.dedup();
-    r
+/// The test building `params` describe (unset options keep their defaults).
+pub fn demo_spec(params: &DemoParams) -> DemoBuilding {
+    let mut b = DemoBuilding::default();
+    if let Some(v) = params.rooms_per_side {
+        b.rooms_per_side = v;
+    }
+    if let Some(v) = params.room2_door_width_m {
+        b.room2_door_width_m = v;
+    }
+    if let Some(v) = params.door_width_m {
+        b.door_width_m = v;
+    }
+    if let Some(v) = params.corridor_width_m {
+        b.corridor_width_m = v;
+    }
+    b
 }
 
 /// The floor of `spec`'s building as written to `model` (door widths from the model, so a
@@ -39,7 +41,7 @@ pub fn demo_floor(
     spec: &DemoBuilding,
     model: &Model,
     classification: &Classification,
-) -> Result<Floor, SimError> {
+) -> Result<Floor, BridgeError> {
     let unit = units::length_unit(model);
     let mut ids: BTreeMap<(&str, String), String> = BTreeMap::new();
     let mut widths: BTreeMap<String, f64> = BTreeMap::new();
@@ -61,17 +63,20 @@ pub fn demo_floor(
         .iter()
         .map(|c| (c.global_id.as_str(), c))
         .collect();
-    let id = |class: &'static str, name: &str| -> Result<String, SimError> {
+    let id = |class: &'static str, name: &str| -> Result<String, BridgeError> {
         ids.get(&(class, name.to_string()))
             .cloned()
-            .ok_or_else(|| SimError::Building(format!("the model has no {class} named `{name}`")))
+            .ok_or_else(|| BridgeError::MissingElement {
+                class,
+                name: name.to_string(),
+            })
     };
     let layout = spec.layout();
     let t = spec.wall_thickness_m;
     let (lx, ly) = (spec.length_m(), spec.depth_m());
     let (c0, c1) = (layout.corridor_min[1], layout.corridor_max[1]);
     let mut obstacles = Vec::new();
-    let mut wall = |name: &str, rings: Vec<Vec<DVec2>>| -> Result<(), SimError> {
+    let mut wall = |name: &str, rings: Vec<Vec<DVec2>>| -> Result<(), BridgeError> {
         let gid = id("IfcWall", name)?;
         let c = by_gid.get(gid.as_str()).copied();
         obstacles.push(FloorObstacle {

@@ -4,7 +4,7 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
-use crate::error::PoiError;
+use crate::error::ProfileError;
 
 /// How a robot moves; decides whether stairs are passable.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -70,8 +70,8 @@ impl RobotProfile {
     }
 
     /// Reads a profile from TOML text; `origin` names it in errors.
-    pub fn from_toml(text: &str, origin: &str) -> Result<RobotProfile, PoiError> {
-        let p: RobotProfile = toml::from_str(text).map_err(|e| PoiError::Toml {
+    pub fn from_toml(text: &str, origin: &str) -> Result<RobotProfile, ProfileError> {
+        let p: RobotProfile = toml::from_str(text).map_err(|e| ProfileError::Toml {
             file: origin.into(),
             message: e.to_string(),
         })?;
@@ -80,15 +80,15 @@ impl RobotProfile {
     }
 
     /// Reads a profile file.
-    pub fn load(path: &Path) -> Result<RobotProfile, PoiError> {
-        let text = std::fs::read_to_string(path).map_err(|e| PoiError::Io {
+    pub fn load(path: &Path) -> Result<RobotProfile, ProfileError> {
+        let text = std::fs::read_to_string(path).map_err(|source| ProfileError::Io {
             file: path.display().to_string(),
-            message: e.to_string(),
+            source,
         })?;
         RobotProfile::from_toml(&text, &path.display().to_string())
     }
 
-    fn validate(&self, origin: &str) -> Result<(), PoiError> {
+    fn validate(&self, origin: &str) -> Result<(), ProfileError> {
         let positive = [
             ("width_m", self.width_m),
             ("length_m", self.length_m),
@@ -99,7 +99,7 @@ impl RobotProfile {
         ];
         for (name, v) in positive {
             if !(v.is_finite() && v > 0.0) {
-                return Err(PoiError::Invalid {
+                return Err(ProfileError::Invalid {
                     file: origin.into(),
                     message: format!("{name} must be a positive number, not {v}"),
                 });
@@ -112,14 +112,14 @@ impl RobotProfile {
         ];
         for (name, v) in non_negative {
             if !(v.is_finite() && v >= 0.0) {
-                return Err(PoiError::Invalid {
+                return Err(ProfileError::Invalid {
                     file: origin.into(),
                     message: format!("{name} must be zero or more, not {v}"),
                 });
             }
         }
         if self.min_clearance_width() < self.width_m {
-            return Err(PoiError::Invalid {
+            return Err(ProfileError::Invalid {
                 file: origin.into(),
                 message: format!(
                     "min_clearance_width_m {} is narrower than the robot ({} m)",

@@ -4,12 +4,14 @@
 //! bound, they are occupied.
 
 use glam::DVec2;
+use poinav_bridge::{building, Stages};
 use poinav_geom::section::{SectionBounds, SectionLimit};
-use poinav_geom::{floor_plans, GeomError, PlanItemKind, PlanOptions, PlanSource};
+use poinav_geom::{
+    floor_plans, floor_plans_with_meshes, GeomError, PlanItemKind, PlanOptions, PlanSource,
+};
 use poinav_ifc::{EntityId, Model};
 use poinav_nav::{CellState, GridOptions, ObstacleKind, OccupancyGrid};
 use poinav_poi::{classify, RobotProfile, RuleSet};
-use poinav_sim::ifc_floor::floor_from_plan;
 
 /// Segments around the furniture's cylinder.
 const N: usize = 100;
@@ -69,11 +71,14 @@ fn cell_states(model: &Model, bounds: SectionBounds, at: &[DVec2]) -> Vec<CellSt
         section: bounds,
         ..PlanOptions::default()
     };
-    let plans = floor_plans(model, &options);
+    let meshes = poinav_geom::mesh_model(model);
+    let plans = floor_plans_with_meshes(model, &meshes, &options);
     assert_eq!(plans.len(), 1);
     let profile = RobotProfile::paper();
-    let floor = floor_from_plan(&plans[0], &classify(model, &RuleSet::defaults(), &profile));
-    let grid = OccupancyGrid::build(&floor, &profile, &GridOptions::default()).unwrap();
+    let c = classify(model, &RuleSet::defaults(), &profile);
+    let made = building(model, &c, &Stages { meshes, plans });
+    let floor = &made.building.floors[0];
+    let grid = OccupancyGrid::build(floor, &profile, &GridOptions::default()).unwrap();
     at.iter()
         .map(|p| grid.cells[grid.cell_of(*p).unwrap()])
         .collect()
@@ -125,7 +130,13 @@ fn a_table_whose_section_is_cut_off_is_unknown_not_free() {
          is drawn as unknown space"
     );
     let profile = RobotProfile::paper();
-    let floor = floor_from_plan(&plans[0], &classify(&model, &RuleSet::defaults(), &profile));
+    let c = classify(&model, &RuleSet::defaults(), &profile);
+    let stages = Stages {
+        meshes: poinav_geom::mesh_model(&model),
+        plans,
+    };
+    let made = building(&model, &c, &stages);
+    let floor = &made.building.floors[0];
     let kinds: Vec<ObstacleKind> = floor.obstacles.iter().map(|o| o.kind).collect();
     assert_eq!(kinds, [ObstacleKind::Unknown]);
 
