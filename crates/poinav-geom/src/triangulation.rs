@@ -3,16 +3,33 @@
 
 use glam::{DVec2, DVec3};
 
+use crate::self_crossing::{crossings, Crossings};
+
 /// Most points one polygon (outer boundary and holes together) may have.
 pub const MAX_POLYGON_POINTS: usize = 1 << 20;
 
+/// Polygons with more points than this are checked for self-crossings before the ear clipper
+/// sees them: on a self-crossing polygon its work grows with the cube of the point count (a
+/// few milliseconds at this size, minutes at 4,000 points).
+pub const CROSSING_CHECK_ABOVE: usize = 128;
+
 /// Triangles of the polygon `outer` with `holes`, as indices into the points of `outer`
 /// followed by those of each hole, counter-clockwise in the plane. `None` when the polygon
-/// cannot be triangulated (fewer than three points, too many points, or a numeric failure).
+/// cannot be triangulated (fewer than three points, too many points, a numeric failure, or
+/// more than [`CROSSING_CHECK_ABOVE`] points and rings that cross: profiles are resolved
+/// before, in [`crate::profile`]).
 pub fn triangulate_2d(outer: &[DVec2], holes: &[Vec<DVec2>]) -> Option<Vec<[u32; 3]>> {
     let n = outer.len() + holes.iter().map(Vec::len).sum::<usize>();
     if outer.len() < 3 || n > MAX_POLYGON_POINTS {
         return None;
+    }
+    if n > CROSSING_CHECK_ABOVE {
+        let rings: Vec<&[DVec2]> = std::iter::once(outer)
+            .chain(holes.iter().map(Vec::as_slice))
+            .collect();
+        if crossings(&rings) != Crossings::None {
+            return None;
+        }
     }
     let points: Vec<DVec2> = outer
         .iter()
@@ -251,5 +268,28 @@ mod tests {
             "{normal}"
         );
         assert!(triangulate_3d(&pts[..2], &[]).is_none());
+    }
+
+    #[test]
+    fn a_large_self_crossing_polygon_is_refused_not_clipped() {
+        // 1,000 points alternately on either side of the centre: every edge crosses most
+        // others. The ear clipper takes about a minute on it (unoptimised); it is refused.
+        let asterisk: Vec<DVec2> = (0..1000)
+            .map(|i| {
+                let side = if i % 2 == 0 { 1.0 } else { -1.0 };
+                DVec2::from_angle(std::f64::consts::TAU * i as f64 / 1000.0) * side
+            })
+            .collect();
+        assert!(triangulate_2d(&asterisk, &[]).is_none());
+        // Small ones are still clipped as they come.
+        assert_eq!(
+            triangulate_2d(&asterisk[..100], &[]).map(|t| t.len()),
+            Some(49)
+        );
+        // A large simple polygon is not refused: a 1,000-gon gives 998 triangles.
+        let circle: Vec<DVec2> = (0..1000)
+            .map(|i| DVec2::from_angle(std::f64::consts::TAU * i as f64 / 1000.0))
+            .collect();
+        assert_eq!(triangulate_2d(&circle, &[]).map(|t| t.len()), Some(998));
     }
 }
