@@ -5,10 +5,11 @@
 //! rounded and hollow rectangles, circles and hollow circles, ellipses, trapezia, I, L, T, U,
 //! C and Z shapes), `IfcArbitraryClosedProfileDef` and `...WithVoids` bounded by any curve
 //! [`crate::curve`] reads, `IfcCenterLineProfileDef` ([`crate::open_profile`]),
-//! `IfcDerivedProfileDef` (a parent profile moved, mirrored or
-//! scaled) and `IfcCompositeProfileDef` (several areas). Anything else is
-//! [`GeomError::Unsupported`] naming the profile. A boundary that crosses itself (a star drawn
-//! in one stroke) or a hole that crosses it is resolved into the simple areas it encloses.
+//! `IfcDerivedProfileDef` (a parent profile moved, mirrored or scaled),
+//! `IfcMirroredProfileDef` (a parent mirrored about its y axis) and `IfcCompositeProfileDef`
+//! (several areas). Anything else is [`GeomError::Unsupported`] naming the profile. A boundary
+//! that crosses itself (a star drawn in one stroke) or a hole that crosses it is resolved into
+//! the simple areas it encloses.
 
 use glam::{DAffine2, DVec2};
 use poinav_ifc::Entity;
@@ -100,6 +101,15 @@ fn areas_at(
         }
         return Ok(out);
     }
+    if profile.is_a("IfcMirroredProfileDef") {
+        // Its Operator is derived: a mirror about the parent's y axis (x becomes -x).
+        let parent = required_ref(&profile, "ParentProfile", "IfcProfileDef")?;
+        let mirror = DAffine2::from_scale(DVec2::new(-1.0, 1.0));
+        return Ok(areas_at(parent, units, depth + 1)?
+            .into_iter()
+            .map(|area| area.transformed(&mirror))
+            .collect());
+    }
     if profile.is_a("IfcDerivedProfileDef") {
         let parent = required_ref(&profile, "ParentProfile", "IfcProfileDef")?;
         let op = required_ref(&profile, "Operator", "IfcCartesianTransformationOperator2D")?;
@@ -132,7 +142,14 @@ fn areas_at(
     } else {
         return Err(unsupported(&profile, "profile"));
     };
-    let outer = polygon::clean(outer).ok_or_else(no_area)?;
+    // A ring that crosses itself may enclose area with none in sum (a bow tie): resolved
+    // below, not refused.
+    let outer = match polygon::clean(outer.clone()) {
+        Some(outer) => outer,
+        None => polygon::without_repeats(outer)
+            .filter(|r| self_crossing::crossings(&[r]) != Crossings::None)
+            .ok_or_else(no_area)?,
+    };
     let holes = holes
         .into_iter()
         .filter_map(polygon::clean)
@@ -324,6 +341,15 @@ mod tests {
             "{}",
             a[0].area()
         );
+        // A bow tie: no area in sum, two triangles of 0.25 m2 filled.
+        let m = model(
+            "#1=IFCCARTESIANPOINT((0.,0.));#2=IFCCARTESIANPOINT((5.,0.2));\
+             #3=IFCCARTESIANPOINT((5.,0.));#4=IFCCARTESIANPOINT((0.,0.2));\
+             #5=IFCPOLYLINE((#1,#2,#3,#4,#1));#6=IFCARBITRARYCLOSEDPROFILEDEF(.AREA.,$,#5);",
+        );
+        let a = areas(m.entity(EntityId(6)).unwrap(), &Units::SI).unwrap();
+        let total: f64 = a.iter().map(ProfileArea::area).sum();
+        assert!((total - 0.5).abs() < 1e-6, "{a:?}");
         // {2001/1000}: every edge crosses nearly every other, a million crossings.
         let m = model(&star(2001, 1000));
         let err = areas(m.entity(EntityId(2)).unwrap(), &Units::SI).unwrap_err();
