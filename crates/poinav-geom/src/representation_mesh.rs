@@ -394,64 +394,103 @@ impl ItemMesher {
             let second = b
                 .get_ref("SecondOperand")
                 .ok_or_else(|| missing(&b, "SecondOperand"))?;
-            parts = match self.apply(b, second, &parts, depth) {
-                Ok(result) => result,
-                // The bounds on the whole stay errors; anything else keeps the first operand.
-                Err(e @ GeomError::TimeLimit { .. }) => return Err(e),
-                Err(e) if self.items > MAX_ITEMS || self.triangles > MAX_TRIANGLES => {
-                    return Err(e)
-                }
-                Err(e) => {
-                    self.warnings.push(left_uncut(&b, &second, e));
-                    parts
-                }
-            };
+            parts = self.apply(b, second, parts, depth)?;
             let n = parts.iter().map(|p| p.mesh.triangles.len()).sum();
             self.count(&b, n)?;
         }
         Ok(parts)
     }
 
-    /// The boolean result `b` of `parts` (its first operand) and `second`.
+    /// The boolean result `b` of `parts` (its first operand) and `second`. What cannot be
+    /// read or applied of `second` is left out with a [`GeomError::LeftUncut`] warning (as
+    /// IfcOpenShell keeps the first operand); only the time limit and the bounds on items and
+    /// triangles are errors.
     fn apply(
         &mut self,
         b: Entity<'_>,
         second: Entity<'_>,
-        parts: &[Part],
+        parts: Vec<Part>,
         depth: usize,
     ) -> Result<Vec<Part>, GeomError> {
         let op = b.get("Operator").and_then(|v| v.as_enum()).unwrap_or("");
         if second.is_a("IfcHalfSpaceSolid") {
-            let mut hs = half_space(second, &self.units)?;
-            match op {
-                "DIFFERENCE" => {}
-                "INTERSECTION" if hs.prism.is_none() => hs.outward = -hs.outward,
-                _ => return Err(unsupported(&b, "this operation with a half-space")),
-            }
-            let mut out = Vec::with_capacity(parts.len());
+            let hs = half_space(second, &self.units).and_then(|mut hs| match op {
+                "DIFFERENCE" => Ok(hs),
+                "INTERSECTION" if hs.prism.is_none() => {
+                    hs.outward = -hs.outward;
+                    Ok(hs)
+                }
+                _ => Err(unsupported(&b, "this operation with a half-space")),
+            });
+            let hs = match hs {
+                Ok(hs) => hs,
+                Err(e) => return self.left_out(&b, &second, e, parts),
+            };
+            let (mut out, mut failed) = (Vec::with_capacity(parts.len()), false);
             for p in parts {
-                let mesh = clip(&p.mesh, &hs)
-                    .ok_or_else(|| degenerate(&b, "clipping by a half-space failed"))?;
-                self.count(&b, mesh.triangles.len())?;
-                out.push(Part {
-                    mesh,
-                    closed: p.closed,
-                });
+                match clip(&p.mesh, &hs) {
+                    Some(mesh) => {
+                        self.count(&b, mesh.triangles.len())?;
+                        out.push(Part {
+                            mesh,
+                            closed: p.closed,
+                        });
+                    }
+                    None => {
+                        failed = true;
+                        out.push(p);
+                    }
+                }
+            }
+            if failed {
+                let why = degenerate(&b, "clipping by a half-space failed");
+                self.warnings.push(left_uncut(&b, &second, why));
             }
             return Ok(out);
         }
-        let others = self.operand(second, depth + 1)?;
+        let others = match self.operand(second, depth + 1) {
+            Ok(others) => others,
+            Err(e) => return self.left_out(&b, &second, e, parts),
+        };
         match op {
-            "DIFFERENCE" => match subtract(parts.to_vec(), &others, self.deadline) {
-                Ok(cut) if cut.failed.is_empty() => Ok(cut.parts),
-                Ok(_) => Err(degenerate(&b, "boolean difference failed")),
-                Err(Cut::TimeLimit) => Err(time_limit(&b)),
+            "DIFFERENCE" => {
+                let cut = subtract(parts, &others, self.deadline)
+                    .map_err(|Cut::TimeLimit| time_limit(&b))?;
+                if !cut.failed.is_empty() {
+                    let why = degenerate(&b, "boolean difference failed");
+                    self.warnings.push(left_uncut(&b, &second, why));
+                }
+                Ok(cut.parts)
+            }
+            "UNION" => Ok(parts.into_iter().chain(others).collect()),
+            "INTERSECTION" => match intersect(&parts, &others) {
+                Some(common) => Ok(common),
+                None => {
+                    let why = degenerate(&b, "boolean intersection failed");
+                    self.left_out(&b, &second, why, parts)
+                }
             },
-            "UNION" => Ok(parts.iter().cloned().chain(others).collect()),
-            "INTERSECTION" => intersect(parts, &others)
-                .ok_or_else(|| degenerate(&b, "boolean intersection failed")),
-            _ => Err(missing(&b, "Operator")),
+            _ => self.left_out(&b, &second, missing(&b, "Operator"), parts),
         }
+    }
+
+    /// `parts` as they are, with a warning that `b` is meshed without `second` because of
+    /// `e`; or `e` itself when it is the time limit or a bound on the whole was reached.
+    fn left_out(
+        &mut self,
+        b: &Entity<'_>,
+        second: &Entity<'_>,
+        e: GeomError,
+        parts: Vec<Part>,
+    ) -> Result<Vec<Part>, GeomError> {
+        if matches!(e, GeomError::TimeLimit { .. })
+            || self.items > MAX_ITEMS
+            || self.triangles > MAX_TRIANGLES
+        {
+            return Err(e);
+        }
+        self.warnings.push(left_uncut(b, second, e));
+        Ok(parts)
     }
 }
 
