@@ -55,9 +55,20 @@ impl Edge {
 }
 
 /// Whether the edges of `rings` (each implicitly closed) cross or overlap one another,
-/// edges that follow each other in a ring aside. Edges that only touch at an end are not
-/// counted (a polygon's hole touching its boundary at a corner is triangulated as it is).
+/// edges that follow each other in a ring aside. Edges that only share an end are not
+/// counted (a polygon's hole touching its boundary at a corner is triangulated as it is);
+/// an end lying inside another edge, or edges overlapping along a line, are.
 pub fn crossings(rings: &[&[DVec2]]) -> Crossings {
+    count(rings, false)
+}
+
+/// Like [`crossings`], but counting only edges that cross at a point inside both (no
+/// touching, no overlaps): what makes the ear clipper's work cubic.
+pub fn proper_crossings(rings: &[&[DVec2]]) -> Crossings {
+    count(rings, true)
+}
+
+fn count(rings: &[&[DVec2]], proper_only: bool) -> Crossings {
     let mut edges: Vec<Edge> = Vec::new();
     for (r, ring) in rings.iter().enumerate() {
         let n = ring.len();
@@ -101,7 +112,7 @@ pub fn crossings(rings: &[&[DVec2]]) -> Crossings {
             if pairs > budget {
                 return Crossings::TooComplex;
             }
-            if segments_cross(e.a, e.b, f.a, f.b) {
+            if segments_cross(e.a, e.b, f.a, f.b, proper_only) {
                 found += 1;
                 if found > MAX_CROSSINGS {
                     return Crossings::TooComplex;
@@ -117,12 +128,17 @@ pub fn crossings(rings: &[&[DVec2]]) -> Crossings {
     }
 }
 
-/// True when segments `a`-`b` and `c`-`d` cross at a point inside both, one's end lies inside
-/// the other, or they overlap along a stretch of line; false when they only share an end.
-fn segments_cross(a: DVec2, b: DVec2, c: DVec2, d: DVec2) -> bool {
+/// True when segments `a`-`b` and `c`-`d` cross at a point inside both, or (unless
+/// `proper_only`) one's end lies inside the other or they overlap along a stretch of line;
+/// false when they only share an end.
+fn segments_cross(a: DVec2, b: DVec2, c: DVec2, d: DVec2, proper_only: bool) -> bool {
     let orient = |p: DVec2, q: DVec2, r: DVec2| (q - p).perp_dot(r - p);
     let (d1, d2) = (orient(c, d, a), orient(c, d, b));
     let (d3, d4) = (orient(a, b, c), orient(a, b, d));
+    let opposite = |s: f64, t: f64| (s > 0.0 && t < 0.0) || (s < 0.0 && t > 0.0);
+    if proper_only {
+        return opposite(d1, d2) && opposite(d3, d4);
+    }
     if d1 == 0.0 && d2 == 0.0 && d3 == 0.0 && d4 == 0.0 {
         // On one line: they overlap when their extents along it do by more than a point.
         let axis = b - a;
@@ -130,7 +146,6 @@ fn segments_cross(a: DVec2, b: DVec2, c: DVec2, d: DVec2) -> bool {
         let (c0, c1) = (t(c).min(t(d)), t(c).max(t(d)));
         return c0.max(0.0) < c1.min(axis.length_squared());
     }
-    let opposite = |s: f64, t: f64| (s > 0.0 && t < 0.0) || (s < 0.0 && t > 0.0);
     if opposite(d1, d2) && opposite(d3, d4) {
         return true;
     }
@@ -220,9 +235,16 @@ mod tests {
         // A ring run twice over (its edges lie on each other, end to end).
         let twice: Vec<DVec2> = outer.iter().chain(&outer).copied().collect();
         assert_eq!(crossings(&[&twice]), Crossings::Some(4));
+        // Touching and overlapping are not crossing properly.
+        assert_eq!(proper_crossings(&[&twice]), Crossings::None);
+        assert_eq!(
+            proper_crossings(&[&outer, &sq(0.0, 0.0, 1.0)]),
+            Crossings::None
+        );
         // A hole reaching out of the outer ring crosses it twice; resolved, it is cut away.
         let out = sq(3.0, 1.0, 2.0);
         assert_eq!(crossings(&[&outer, &out]), Crossings::Some(2));
+        assert_eq!(proper_crossings(&[&outer, &out]), Crossings::Some(2));
         let r = resolve(&outer, &[out]);
         assert!((total_area(&r) - (16.0 - 2.0)).abs() < 1e-6);
     }
