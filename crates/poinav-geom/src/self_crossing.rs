@@ -13,10 +13,10 @@ use i_overlay::core::overlay_rule::OverlayRule;
 
 use crate::region::{overlay_rings, Region};
 
-/// Most pairs of edges whose boxes overlap that one check compares, beyond
-/// [`PAIRS_PER_EDGE`] per edge (a few tens of milliseconds): a polygon needing more is
+/// Most pairs of edges whose x-extents overlap that one check looks at, beyond
+/// [`PAIRS_PER_EDGE`] per edge (some tens of milliseconds): a polygon needing more is
 /// [`Crossings::TooComplex`].
-pub const MAX_EXTRA_PAIRS: usize = 4_000_000;
+pub const MAX_EXTRA_PAIRS: usize = 20_000_000;
 
 /// Pairs of edges compared per edge before [`MAX_EXTRA_PAIRS`] count: real profiles compare
 /// a few per edge.
@@ -59,16 +59,18 @@ impl Edge {
 /// counted (a polygon's hole touching its boundary at a corner is triangulated as it is);
 /// an end lying inside another edge, or edges overlapping along a line, are.
 pub fn crossings(rings: &[&[DVec2]]) -> Crossings {
-    count(rings, false)
+    count(rings, false, MAX_EXTRA_PAIRS)
 }
 
 /// Like [`crossings`], but counting only edges that cross at a point inside both (no
 /// touching, no overlaps): what makes the ear clipper's work cubic.
 pub fn proper_crossings(rings: &[&[DVec2]]) -> Crossings {
-    count(rings, true)
+    count(rings, true, MAX_EXTRA_PAIRS)
 }
 
-fn count(rings: &[&[DVec2]], proper_only: bool) -> Crossings {
+/// The sweep: looks at no more than `extra_pairs` pairs of edges beyond [`PAIRS_PER_EDGE`]
+/// per edge.
+fn count(rings: &[&[DVec2]], proper_only: bool, extra_pairs: usize) -> Crossings {
     let mut edges: Vec<Edge> = Vec::new();
     for (r, ring) in rings.iter().enumerate() {
         let n = ring.len();
@@ -95,22 +97,23 @@ fn count(rings: &[&[DVec2]], proper_only: bool) -> Crossings {
         }
     };
     edges.sort_by(|e, f| e.x_range().0.total_cmp(&f.x_range().0));
-    let budget = MAX_EXTRA_PAIRS + PAIRS_PER_EDGE * edges.len();
+    let budget = extra_pairs + PAIRS_PER_EDGE * edges.len();
     let (mut pairs, mut found) = (0usize, 0usize);
     // Edges whose x-extent reaches the sweep line, dropped once it passes their end.
     let mut active: Vec<usize> = Vec::new();
     for (k, e) in edges.iter().enumerate() {
         let (x0, _) = e.x_range();
+        // Every edge looked at counts, whether its y-extent overlaps or not.
+        pairs += active.len();
+        if pairs > budget {
+            return Crossings::TooComplex;
+        }
         active.retain(|&j| edges[j].x_range().1 >= x0);
         let (ey0, ey1) = (e.a.y.min(e.b.y), e.a.y.max(e.b.y));
         for &j in &active {
             let f = &edges[j];
             if f.a.y.max(f.b.y) < ey0 || f.a.y.min(f.b.y) > ey1 || adjacent(e, f) {
                 continue;
-            }
-            pairs += 1;
-            if pairs > budget {
-                return Crossings::TooComplex;
             }
             if segments_cross(e.a, e.b, f.a, f.b, proper_only) {
                 found += 1;
@@ -264,5 +267,29 @@ mod tests {
         assert!(notches > 0.0 && notches < 3e-6, "{}", total_area(&r));
         // {n/(n-1)/2}: every chord crosses nearly every other, far past the bound.
         assert_eq!(crossings(&[&star(2001, 1000)]), Crossings::TooComplex);
+    }
+
+    #[test]
+    fn a_comb_of_long_teeth_costs_the_bound_not_quadratic_time() {
+        // Teeth 100 m long and 1 cm apart on a spine: every edge's x-extent overlaps every
+        // other's. 100 teeth are checked (no crossing); 1,000, some 8 million pairs to look
+        // at, stop at a bound of a million (the real one is 20 million).
+        let comb = |teeth: usize| {
+            let top = teeth as f64 * 0.01;
+            let mut c = vec![DVec2::new(-1.0, top), DVec2::new(-1.0, 0.0)];
+            for i in 0..teeth {
+                let y = i as f64 * 0.01;
+                c.extend(
+                    [(0.0, y), (100.0, y), (100.0, y + 0.005), (0.0, y + 0.005)].map(DVec2::from),
+                );
+            }
+            c
+        };
+        assert_eq!(count(&[&comb(100)], false, 1_000_000), Crossings::None);
+        assert_eq!(
+            count(&[&comb(1000)], false, 1_000_000),
+            Crossings::TooComplex
+        );
+        assert_eq!(crossings(&[&comb(100)]), Crossings::None);
     }
 }
