@@ -20,6 +20,8 @@ Files:
   polyline-2-points.ifc       wall A's profile is a closed-profile polyline with two points
   polyline-self-intersecting.ifc  wall A's profile is a bow tie (self-intersecting polyline)
   opening-bigger-than-wall.ifc    wall A has an opening larger than the wall in every direction
+  opening-zero-depth.ifc      wall A has an opening (#700) whose extrusion Depth is 0.: the
+                              wall is kept uncut, the opening named in a warning
   door-without-geometry.ifc   a second door (#600) with a placement but no representation
   truncated-NN-WHAT.ifc       the base file cut at one point (every section start and end,
                               and in the middle of an instance); NN orders them
@@ -166,6 +168,12 @@ def main():
                     "#114=IFCCARTESIANPOINT((0.,0.2));",
                 ],
             )
+        )
+    )
+    files["opening-zero-depth.ifc"] = text(
+        model(
+            extra=box(700, "IFCOPENINGELEMENT", "Flat opening", 1.0, -0.1, 0.0, 1.0, 0.4, 0.0, ",.OPENING.", "#101")
+            + [f"#9=IFCRELVOIDSELEMENT('{guid(9)}',$,$,$,#100,#700);"]
         )
     )
     files["opening-bigger-than-wall.ifc"] = text(

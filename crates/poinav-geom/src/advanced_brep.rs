@@ -24,7 +24,7 @@ use crate::error::{degenerate, missing, required_ref, unsupported, GeomError};
 use crate::mesh::Mesh;
 use crate::polygon;
 use crate::surface::{surface, Surface};
-use crate::triangulation::{newell_normal, restore_skipped, triangulate_2d, triangulate_3d};
+use crate::triangulation::{newell_normal, triangulate_2d, triangulate_3d};
 use crate::unit_assignment::Units;
 use crate::uv_mesh::{self, edge_key};
 
@@ -225,13 +225,9 @@ impl Mesher {
         let outer = outer_index(&loops, |l| newell_normal(&l.points).length());
         let outer = loops.swap_remove(outer);
         let holes: Vec<Vec<DVec3>> = loops.into_iter().map(|l| l.points).collect();
-        let Some(mut tris) = triangulate_3d(&outer.points, &holes) else {
+        let Some(tris) = triangulate_3d(&outer.points, &holes) else {
             return Ok(());
         };
-        let lengths: Vec<usize> = std::iter::once(outer.points.len())
-            .chain(holes.iter().map(Vec::len))
-            .collect();
-        restore_skipped(&mut tris, &lengths);
         let all: Vec<DVec3> = outer
             .points
             .iter()
@@ -272,11 +268,9 @@ impl Mesher {
         let mut order: Vec<usize> = vec![outer];
         order.extend((0..rings.len()).filter(|&i| i != outer));
         let holes: Vec<Vec<DVec2>> = order[1..].iter().map(|&i| rings[i].1.clone()).collect();
-        let Some(mut tris) = triangulate_2d(&rings[outer].1, &holes) else {
+        let Some(tris) = triangulate_2d(&rings[outer].1, &holes) else {
             return Ok(());
         };
-        let lengths: Vec<usize> = order.iter().map(|&i| rings[i].1.len()).collect();
-        restore_skipped(&mut tris, &lengths);
         let mut uv: Vec<DVec2> = Vec::new();
         let mut xyz: Vec<DVec3> = Vec::new();
         let mut boundary: rustc_hash::FxHashSet<(u32, u32)> = Default::default();

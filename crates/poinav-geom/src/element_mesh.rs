@@ -12,7 +12,7 @@ use glam::DAffine3;
 use poinav_ifc::{spatial, Entity, EntityId, Model};
 use rayon::prelude::*;
 
-use crate::error::{degenerate, GeomError};
+use crate::error::{degenerate, left_uncut, GeomError};
 use crate::mesh::{ElementMesh, Mesh};
 use crate::placement::PlacementCache;
 use crate::representation_mesh::{past, subtract, Cut, ItemMesher, Part};
@@ -37,6 +37,10 @@ pub struct ModelMeshes {
     pub spaces: Vec<ElementMesh>,
     /// Products whose geometry could not be made, in file order, with why.
     pub failures: Vec<(EntityId, GeomError)>,
+    /// Elements and spaces meshed without an opening or a boolean operand that could not be
+    /// read or applied (their body kept uncut, as IfcOpenShell does), in file order, each
+    /// with a [`GeomError::LeftUncut`] naming what was left out and why.
+    pub uncut: Vec<(EntityId, GeomError)>,
     /// Elements with no `Representation` at all and no parts that could carry one (see
     /// [`without_representation`]): nothing to mesh, but a reader of the export should know.
     pub without_geometry: Vec<EntityId>,
@@ -97,13 +101,13 @@ pub fn mesh_model_with_progress(
 ) -> ModelMeshes {
     let products = meshed_products(model);
     let ticker = crate::progress::Ticker::new(products.len(), progress);
-    let results: Vec<(Entity<'_>, Result<ElementMesh, GeomError>)> = products
+    let results: Vec<(Entity<'_>, Result<Meshed, GeomError>)> = products
         .par_iter()
         .with_min_len(4)
         .map_init(
             || PlacementCache::new(model),
             |cache, &p| {
-                let r = mesh_product_within(cache, p, limit);
+                let r = mesh_product_noting(cache, p, limit);
                 ticker.tick();
                 (p, r)
             },
@@ -118,13 +122,23 @@ pub fn mesh_model_with_progress(
     };
     for (p, r) in results {
         match r {
-            Ok(m) if p.is_a("IfcSpace") => out.spaces.push(m),
-            Ok(m) => out.elements.push(m),
+            Ok((m, warnings)) => {
+                out.uncut.extend(warnings.into_iter().map(|w| (p.id(), w)));
+                if p.is_a("IfcSpace") {
+                    out.spaces.push(m);
+                } else {
+                    out.elements.push(m);
+                }
+            }
             Err(e) => out.failures.push((p.id(), e)),
         }
     }
     out
 }
+
+/// A product's mesh, and the openings and boolean operands it is meshed without
+/// ([`GeomError::LeftUncut`]).
+pub type Meshed = (ElementMesh, Vec<GeomError>);
 
 /// The mesh of one product in world coordinates (metres), its openings subtracted, with its
 /// colour and storey. Errors name the `#id` at fault: no body representation, an unreadable
@@ -143,6 +157,16 @@ pub fn mesh_product_within<'m>(
     product: Entity<'m>,
     limit: Duration,
 ) -> Result<ElementMesh, GeomError> {
+    mesh_product_noting(cache, product, limit).map(|(m, _)| m)
+}
+
+/// [`mesh_product_within`], with the openings and boolean operands the product is meshed
+/// without, each a [`GeomError::LeftUncut`].
+pub fn mesh_product_noting<'m>(
+    cache: &mut PlacementCache<'m>,
+    product: Entity<'m>,
+    limit: Duration,
+) -> Result<Meshed, GeomError> {
     let deadline = Instant::now().checked_add(limit);
     let timed_out = || GeomError::TimeLimit {
         id: product.id(),
@@ -159,17 +183,23 @@ fn mesh_until<'m>(
     cache: &mut PlacementCache<'m>,
     product: Entity<'m>,
     deadline: Option<Instant>,
-) -> Result<ElementMesh, GeomError> {
+) -> Result<Meshed, GeomError> {
     let placement = cache.product(product)?;
     let rep = body_representation(product)?;
     let mut mesher = ItemMesher::with_deadline(cache.units(), deadline)
         .with_maps(std::mem::take(&mut cache.mapped_meshes));
     let parts = mesher.representation(rep);
     let colour = mesher.colour;
+    let mut warnings = std::mem::take(&mut mesher.warnings);
     cache.mapped_meshes = mesher.into_maps();
     let mut parts = parts?;
     let had_triangles = parts.iter().any(|p| !p.mesh.is_empty());
     let openings = openings_of(product);
+    let timed_out = || GeomError::TimeLimit {
+        id: product.id(),
+        class: String::new(),
+        seconds: 0.0,
+    };
     if !openings.is_empty() && parts.iter().any(|p| p.closed) {
         if openings.len() > MAX_OPENINGS {
             return Err(degenerate(
@@ -177,38 +207,31 @@ fn mesh_until<'m>(
                 "more openings than one element may have",
             ));
         }
-        // Openings in the host's coordinates.
+        // Openings in the host's coordinates; one that cannot be read is left out.
         let to_host = placement.inverse();
         let mut cutters: Vec<Part> = Vec::new();
+        let mut cut_by: Vec<Entity<'m>> = Vec::new();
         for opening in openings {
             if past(deadline) {
-                return Err(GeomError::TimeLimit {
-                    id: product.id(),
-                    class: String::new(),
-                    seconds: 0.0,
-                });
+                return Err(timed_out());
             }
-            let t: DAffine3 = to_host * cache.product(opening)?;
-            let rep = body_representation(opening)?;
-            let mut m = ItemMesher::with_deadline(cache.units(), deadline);
-            for mut part in m.representation(rep)? {
-                part.mesh.transform(&t);
-                cutters.push(part);
+            match opening_parts(cache, opening, to_host, deadline) {
+                Ok(parts) => {
+                    cut_by.extend(parts.iter().map(|_| opening));
+                    cutters.extend(parts);
+                }
+                Err(GeomError::TimeLimit { .. }) => return Err(timed_out()),
+                Err(e) => warnings.push(left_uncut(&product, &opening, e)),
             }
         }
-        parts = match subtract(parts, &cutters, deadline) {
-            Ok(parts) => parts,
-            Err(Cut::Failed) => {
-                return Err(degenerate(&product, "subtracting its openings failed"))
-            }
-            Err(Cut::TimeLimit) => {
-                return Err(GeomError::TimeLimit {
-                    id: product.id(),
-                    class: String::new(),
-                    seconds: 0.0,
-                })
-            }
-        };
+        let cut = subtract(parts, &cutters, deadline).map_err(|Cut::TimeLimit| timed_out())?;
+        let mut failed: Vec<Entity<'m>> = cut.failed.iter().map(|&i| cut_by[i]).collect();
+        failed.dedup();
+        for opening in failed {
+            let why = degenerate(&opening, "subtracting it from its host failed");
+            warnings.push(left_uncut(&product, &opening, why));
+        }
+        parts = cut.parts;
     }
     let mut mesh = Mesh::default();
     for p in &parts {
@@ -230,7 +253,7 @@ fn mesh_until<'m>(
         return Err(degenerate(&rep, "coordinates overflow"));
     }
     let colour = colour.or_else(|| material_colour(product));
-    Ok(ElementMesh {
+    let element = ElementMesh {
         product: product.id(),
         global_id: product.global_id().unwrap_or_default(),
         class: product.type_name().to_string(),
@@ -238,7 +261,25 @@ fn mesh_until<'m>(
         storey: spatial::storey_of(product).map(|s| s.id()),
         mesh,
         color: colour,
-    })
+    };
+    Ok((element, warnings))
+}
+
+/// The parts of `opening`'s body in its host's coordinates (`to_host` from world).
+fn opening_parts<'m>(
+    cache: &mut PlacementCache<'m>,
+    opening: Entity<'m>,
+    to_host: DAffine3,
+    deadline: Option<Instant>,
+) -> Result<Vec<Part>, GeomError> {
+    let t: DAffine3 = to_host * cache.product(opening)?;
+    let rep = body_representation(opening)?;
+    let mut m = ItemMesher::with_deadline(cache.units(), deadline);
+    let mut parts = m.representation(rep)?;
+    for part in &mut parts {
+        part.mesh.transform(&t);
+    }
+    Ok(parts)
 }
 
 /// Representation identifiers that never hold a body.

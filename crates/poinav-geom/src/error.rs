@@ -101,6 +101,23 @@ pub enum GeomError {
         /// The bound reached.
         limit: crate::section::SectionLimit,
     },
+    /// An opening of an element, or the second operand of a boolean result, that could not be
+    /// read or applied: the element is meshed without it (its uncut body, or the first
+    /// operand as it is), as IfcOpenShell does. A warning, not a failure.
+    #[error("{id}: {class} is meshed without {operand} ({operand_class}): {cause}")]
+    LeftUncut {
+        /// The element, or the boolean result.
+        id: EntityId,
+        /// Its class.
+        class: String,
+        /// The opening element or the operand left out.
+        operand: EntityId,
+        /// Its class.
+        operand_class: String,
+        /// Why it could not be applied.
+        #[source]
+        cause: Box<GeomError>,
+    },
     /// A product without a representation from which a footprint can be made.
     #[error("{id}: {class} has no shape representation with geometry")]
     NoGeometry {
@@ -124,6 +141,7 @@ impl GeomError {
             | GeomError::Empty { id, .. }
             | GeomError::TimeLimit { id, .. }
             | GeomError::SectionLimit { id, .. }
+            | GeomError::LeftUncut { id, .. }
             | GeomError::NoGeometry { id, .. } => *id,
         }
     }
@@ -135,6 +153,21 @@ pub(crate) fn missing(e: &poinav_ifc::Entity<'_>, attribute: &'static str) -> Ge
         id: e.id(),
         class: e.type_name().to_string(),
         attribute,
+    }
+}
+
+/// [`GeomError::LeftUncut`]: `e` is meshed without `operand`, which failed with `cause`.
+pub(crate) fn left_uncut(
+    e: &poinav_ifc::Entity<'_>,
+    operand: &poinav_ifc::Entity<'_>,
+    cause: GeomError,
+) -> GeomError {
+    GeomError::LeftUncut {
+        id: e.id(),
+        class: e.type_name().to_string(),
+        operand: operand.id(),
+        operand_class: operand.type_name().to_string(),
+        cause: Box::new(cause),
     }
 }
 

@@ -124,4 +124,48 @@ mod tests {
         }
         assert!(extrude(&[area], DVec3::X).is_none());
     }
+
+    #[test]
+    fn points_on_straight_edges_are_shared_by_caps_and_sides() {
+        // A 4 x 2 rectangle with a point in the middle of each side, and a hole: bridging
+        // the hole, the ear clipper leaves those four points out of the caps; put back, every
+        // edge of the closed mesh is used once each way (no T-junction between a cap and the
+        // sides).
+        let ring = |pts: &[(f64, f64)]| -> Vec<DVec2> {
+            pts.iter().map(|&(x, y)| DVec2::new(x, y)).collect()
+        };
+        let area = ProfileArea {
+            outer: ring(&[
+                (0., 0.),
+                (2., 0.),
+                (4., 0.),
+                (4., 1.),
+                (4., 2.),
+                (2., 2.),
+                (0., 2.),
+                (0., 1.),
+            ]),
+            holes: vec![ring(&[
+                (0.5, 0.25),
+                (0.5, 0.75),
+                (0.75, 0.75),
+                (0.75, 0.25),
+            ])],
+        };
+        let m = extrude(&[area], DVec3::Z).unwrap();
+        let mut directed = std::collections::BTreeMap::new();
+        for t in &m.triangles {
+            for k in 0..3 {
+                *directed.entry((t[k], t[(k + 1) % 3])).or_insert(0) += 1;
+            }
+        }
+        assert!(
+            directed
+                .iter()
+                .all(|(&(a, b), &n)| n == 1 && directed.get(&(b, a)) == Some(&1)),
+            "{:?}",
+            m.triangles
+        );
+        assert!((m.volume() - 7.875).abs() < 1e-12);
+    }
 }

@@ -45,6 +45,7 @@ pub mod chord_rule;
 pub mod csg_primitive;
 pub mod curve;
 pub mod curve3d;
+pub mod curve_bounded_plane;
 pub mod direction;
 pub mod door;
 pub mod door_passage;
@@ -75,6 +76,7 @@ pub mod representation_mesh;
 pub mod revolve;
 pub mod section;
 pub mod sectioned_solid;
+pub mod self_crossing;
 pub mod surface;
 pub mod surface_style;
 pub mod sweep;
@@ -92,8 +94,8 @@ pub mod winding_chain;
 pub use door::{door_geometry, DoorGeometry};
 pub use door_passage::{door_passage, DoorPassage};
 pub use element_mesh::{
-    mesh_model, mesh_model_with_progress, mesh_model_within, mesh_product, mesh_product_within,
-    without_representation, ModelMeshes, PRODUCT_TIME_LIMIT,
+    mesh_model, mesh_model_with_progress, mesh_model_within, mesh_product, mesh_product_noting,
+    mesh_product_within, without_representation, ModelMeshes, PRODUCT_TIME_LIMIT,
 };
 pub use error::GeomError;
 pub use floor_plan::{

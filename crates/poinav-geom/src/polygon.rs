@@ -28,6 +28,22 @@ pub fn bounds(points: &[DVec2]) -> (DVec2, DVec2) {
 /// Drops repeated points (the closing one too) and makes the polygon counter-clockwise;
 /// `None` when fewer than three points remain, a point is not finite, or it has no area.
 pub fn clean(points: Vec<DVec2>) -> Option<Vec<DVec2>> {
+    let (lo, hi) = bounds(&points);
+    let mut out = without_repeats(points)?;
+    let a = signed_area(&out);
+    let extent = (hi - lo).max_element();
+    if a.abs() <= 1e-12 * extent * extent {
+        return None;
+    }
+    if a < 0.0 {
+        out.reverse();
+    }
+    Some(out)
+}
+
+/// The ring without repeated points (within a billionth of its extent; the closing point
+/// too); `None` when fewer than three points remain or a point is not finite.
+pub fn without_repeats(points: Vec<DVec2>) -> Option<Vec<DVec2>> {
     if points.iter().any(|p| !p.is_finite()) {
         return None;
     }
@@ -42,18 +58,7 @@ pub fn clean(points: Vec<DVec2>) -> Option<Vec<DVec2>> {
     while out.len() > 1 && out[0].distance(*out.last().expect("non-empty")) <= eps {
         out.pop();
     }
-    if out.len() < 3 {
-        return None;
-    }
-    let a = signed_area(&out);
-    let extent = (hi - lo).max_element();
-    if a.abs() <= 1e-12 * extent * extent {
-        return None;
-    }
-    if a < 0.0 {
-        out.reverse();
-    }
-    Some(out)
+    (out.len() >= 3).then_some(out)
 }
 
 /// The convex hull, counter-clockwise, without collinear points (Andrew's monotone chain).

@@ -5,9 +5,11 @@
 //! rounded and hollow rectangles, circles and hollow circles, ellipses, trapezia, I, L, T, U,
 //! C and Z shapes), `IfcArbitraryClosedProfileDef` and `...WithVoids` bounded by any curve
 //! [`crate::curve`] reads, `IfcCenterLineProfileDef` ([`crate::open_profile`]),
-//! `IfcDerivedProfileDef` (a parent profile moved, mirrored or
-//! scaled) and `IfcCompositeProfileDef` (several areas). Anything else is
-//! [`GeomError::Unsupported`] naming the profile.
+//! `IfcDerivedProfileDef` (a parent profile moved, mirrored or scaled),
+//! `IfcMirroredProfileDef` (a parent mirrored about its y axis) and `IfcCompositeProfileDef`
+//! (several areas). Anything else is [`GeomError::Unsupported`] naming the profile. A boundary
+//! that crosses itself (a star drawn in one stroke) or a hole that crosses it is resolved into
+//! the simple areas it encloses.
 
 use glam::{DAffine2, DVec2};
 use poinav_ifc::Entity;
@@ -19,6 +21,7 @@ use crate::error::{degenerate, missing, required_ref, unsupported, GeomError};
 use crate::open_profile;
 use crate::parameterized_profile;
 use crate::polygon;
+use crate::self_crossing::{self, Crossings};
 use crate::unit_assignment::Units;
 
 /// Deepest nesting of derived and composite profiles followed.
@@ -98,6 +101,15 @@ fn areas_at(
         }
         return Ok(out);
     }
+    if profile.is_a("IfcMirroredProfileDef") {
+        // Its Operator is derived: a mirror about the parent's y axis (x becomes -x).
+        let parent = required_ref(&profile, "ParentProfile", "IfcProfileDef")?;
+        let mirror = DAffine2::from_scale(DVec2::new(-1.0, 1.0));
+        return Ok(areas_at(parent, units, depth + 1)?
+            .into_iter()
+            .map(|area| area.transformed(&mirror))
+            .collect());
+    }
     if profile.is_a("IfcDerivedProfileDef") {
         let parent = required_ref(&profile, "ParentProfile", "IfcProfileDef")?;
         let op = required_ref(&profile, "Operator", "IfcCartesianTransformationOperator2D")?;
@@ -130,7 +142,14 @@ fn areas_at(
     } else {
         return Err(unsupported(&profile, "profile"));
     };
-    let outer = polygon::clean(outer).ok_or_else(no_area)?;
+    // A ring that crosses itself may enclose area with none in sum (a bow tie): resolved
+    // below, not refused.
+    let outer = match polygon::clean(outer.clone()) {
+        Some(outer) => outer,
+        None => polygon::without_repeats(outer)
+            .filter(|r| self_crossing::crossings(&[r]) != Crossings::None)
+            .ok_or_else(no_area)?,
+    };
     let holes = holes
         .into_iter()
         .filter_map(polygon::clean)
@@ -139,17 +158,47 @@ fn areas_at(
             h
         })
         .collect();
-    let area = ProfileArea { outer, holes };
+    let areas = simple_areas(&profile, ProfileArea { outer, holes })?;
     // Parameterised profiles have a Position (optional in IFC4, absent for arbitrary ones).
-    Ok(vec![match profile.get("Position") {
+    Ok(match profile.get("Position") {
         Some(_) => {
             let position = profile
                 .get_ref("Position")
                 .ok_or_else(|| missing(&profile, "Position"))?;
-            area.transformed(&axis2placement_2d(position, s)?)
+            let a = axis2placement_2d(position, s)?;
+            areas.into_iter().map(|area| area.transformed(&a)).collect()
         }
-        None => area,
-    }])
+        None => areas,
+    })
+}
+
+/// `area` as simple areas: itself when its rings neither cross nor overlap, else the areas
+/// they enclose (the outer boundary filled by the non-zero rule, less the holes; see
+/// [`self_crossing::resolve`]), as IfcOpenShell fills a star drawn in one stroke.
+fn simple_areas(profile: &Entity<'_>, area: ProfileArea) -> Result<Vec<ProfileArea>, GeomError> {
+    let rings: Vec<&[DVec2]> = std::iter::once(&area.outer[..])
+        .chain(area.holes.iter().map(Vec::as_slice))
+        .collect();
+    match self_crossing::crossings(&rings) {
+        Crossings::None => Ok(vec![area]),
+        Crossings::Some(_) => {
+            let out: Vec<ProfileArea> = self_crossing::resolve(&area.outer, &area.holes)
+                .into_iter()
+                .map(|r| ProfileArea {
+                    outer: r.outer,
+                    holes: r.holes,
+                })
+                .collect();
+            if out.is_empty() {
+                return Err(degenerate(profile, "profile encloses no area"));
+            }
+            Ok(out)
+        }
+        Crossings::TooComplex => Err(degenerate(
+            profile,
+            "the profile's boundary crosses itself too often to be resolved",
+        )),
+    }
 }
 
 #[cfg(test)]
@@ -258,5 +307,56 @@ mod tests {
             outline_of(&m, 3, &Units::SI),
             Err(GeomError::Degenerate { .. })
         ));
+    }
+
+    #[test]
+    fn a_star_drawn_in_one_stroke_is_resolved_and_a_tangle_refused() {
+        // The star {4001/2} (each point joined to the next but one, twice around) encloses
+        // the regular 4001-gon less a notch between each two points: nearly pi.
+        let star = |n: usize, k: usize| -> String {
+            let mut data = String::new();
+            for i in 0..n {
+                let p = DVec2::from_angle(std::f64::consts::TAU * (i * k % n) as f64 / n as f64);
+                data.push_str(&format!(
+                    "#{}=IFCCARTESIANPOINT(({},{}));",
+                    10 + i,
+                    p.x,
+                    p.y
+                ));
+            }
+            let refs: Vec<String> = (0..=n).map(|i| format!("#{}", 10 + i % n)).collect();
+            data.push_str(&format!(
+                "#1=IFCPOLYLINE(({}));#2=IFCARBITRARYCLOSEDPROFILEDEF(.AREA.,$,#1);",
+                refs.join(",")
+            ));
+            data
+        };
+        let m = model(&star(4001, 2));
+        let a = areas(m.entity(EntityId(2)).unwrap(), &Units::SI).unwrap();
+        assert_eq!(a.len(), 1);
+        assert!(a[0].holes.is_empty());
+        assert_eq!(a[0].outer.len(), 2 * 4001);
+        assert!(
+            (a[0].area() - std::f64::consts::PI).abs() < 5e-6,
+            "{}",
+            a[0].area()
+        );
+        // A bow tie: no area in sum, two triangles of 0.25 m2 filled.
+        let m = model(
+            "#1=IFCCARTESIANPOINT((0.,0.));#2=IFCCARTESIANPOINT((5.,0.2));\
+             #3=IFCCARTESIANPOINT((5.,0.));#4=IFCCARTESIANPOINT((0.,0.2));\
+             #5=IFCPOLYLINE((#1,#2,#3,#4,#1));#6=IFCARBITRARYCLOSEDPROFILEDEF(.AREA.,$,#5);",
+        );
+        let a = areas(m.entity(EntityId(6)).unwrap(), &Units::SI).unwrap();
+        let total: f64 = a.iter().map(ProfileArea::area).sum();
+        assert!((total - 0.5).abs() < 1e-6, "{a:?}");
+        // {2001/1000}: every edge crosses nearly every other, a million crossings.
+        let m = model(&star(2001, 1000));
+        let err = areas(m.entity(EntityId(2)).unwrap(), &Units::SI).unwrap_err();
+        assert_eq!(err.id(), EntityId(2));
+        assert!(
+            err.to_string().contains("crosses itself too often"),
+            "{err}"
+        );
     }
 }

@@ -24,7 +24,8 @@ use crate::brep::face_mesh;
 use crate::cartesian_point::point3;
 use crate::cartesian_transformation_operator::transformation;
 use crate::csg_primitive::csg_primitive;
-use crate::error::{degenerate, missing, required_ref, unsupported, GeomError};
+use crate::curve_bounded_plane::curve_bounded_plane;
+use crate::error::{degenerate, left_uncut, missing, required_ref, unsupported, GeomError};
 use crate::extrusion::{extrude, extruded_area_solid};
 use crate::face_set::face_set_mesh;
 use crate::gradient_curve::BasisCurve;
@@ -80,12 +81,15 @@ pub struct ItemMesher {
     triangles: usize,
     /// The colour of the first styled item met outside boolean second operands.
     pub colour: Option<[f32; 4]>,
+    /// Boolean operands left out ([`GeomError::LeftUncut`]): the first operand was kept.
+    pub warnings: Vec<GeomError>,
     look_for_colour: bool,
     maps: MappedMeshes,
 }
 
-/// One mapped representation meshed: its parts, the colour its items give, its item count.
-type MappedMesh = (Vec<Part>, Option<[f32; 4]>, usize);
+/// One mapped representation meshed: its parts, the colour its items give, its item count,
+/// the operands its booleans left out.
+type MappedMesh = (Vec<Part>, Option<[f32; 4]>, usize, Vec<GeomError>);
 
 /// What meshing one product leaves for the next ones of the same model: mapped
 /// representations already meshed (by `#id`: their parts in the map's coordinates, the
@@ -111,6 +115,7 @@ impl ItemMesher {
             items: 0,
             triangles: 0,
             colour: None,
+            warnings: Vec::new(),
             look_for_colour: true,
             maps: MappedMeshes::default(),
         }
@@ -251,6 +256,9 @@ impl ItemMesher {
             let mut mesh = csg_primitive(item, s)?;
             mesh.transform(&self.position(&item)?);
             self.leaf(&item, mesh, true)
+        } else if item.is_a("IfcCurveBoundedPlane") {
+            let mesh = curve_bounded_plane(item, &self.units)?;
+            self.leaf(&item, mesh, false)
         } else if item.is_a("IfcCurve")
             || item.is_a("IfcPoint")
             || item.is_a("IfcGeometricSet")
@@ -269,10 +277,12 @@ impl ItemMesher {
 
     /// The parts of a mapped representation in its own coordinates, meshed once per
     /// [`MappedMeshes`] (a model's thousand sleepers share one map); the colour its items give
-    /// is remembered with them.
+    /// is remembered with them, and so are the operands left out (warned about again at
+    /// every use).
     fn mapped(&mut self, rep: Entity<'_>, depth: usize) -> Result<Vec<Part>, GeomError> {
-        if let Some((parts, colour, items)) = self.maps.maps.get(&rep.id()) {
+        if let Some((parts, colour, items, warnings)) = self.maps.maps.get(&rep.id()) {
             let (parts, colour) = (parts.clone(), *colour);
+            self.warnings.extend(warnings.iter().cloned());
             // The items count as if evaluated again, so the bounds hold as without the cache.
             self.items += items;
             if self.items > MAX_ITEMS {
@@ -289,6 +299,7 @@ impl ItemMesher {
             std::mem::replace(&mut self.look_for_colour, true),
         );
         let items_before = self.items;
+        let warnings_before = self.warnings.len();
         let mut result = Ok(Vec::new());
         for sub in rep.get_refs("Items") {
             match (self.item(sub, depth + 1), &mut result) {
@@ -307,9 +318,10 @@ impl ItemMesher {
             self.colour = found;
         }
         let items = self.items - items_before;
+        let warnings = self.warnings[warnings_before..].to_vec();
         self.maps
             .maps
-            .insert(rep.id(), (parts.clone(), found, items));
+            .insert(rep.id(), (parts.clone(), found, items, warnings));
         Ok(parts)
     }
 
@@ -382,47 +394,102 @@ impl ItemMesher {
             let second = b
                 .get_ref("SecondOperand")
                 .ok_or_else(|| missing(&b, "SecondOperand"))?;
-            let op = b.get("Operator").and_then(|v| v.as_enum()).unwrap_or("");
-            parts = if second.is_a("IfcHalfSpaceSolid") {
-                let mut hs = half_space(second, &self.units)?;
-                match op {
-                    "DIFFERENCE" => {}
-                    "INTERSECTION" if hs.prism.is_none() => hs.outward = -hs.outward,
-                    _ => return Err(unsupported(&b, "this operation with a half-space")),
-                }
-                let mut out = Vec::with_capacity(parts.len());
-                for p in parts {
-                    let mesh = clip(&p.mesh, &hs)
-                        .ok_or_else(|| degenerate(&b, "clipping by a half-space failed"))?;
-                    self.count(&b, mesh.triangles.len())?;
-                    out.push(Part {
-                        mesh,
-                        closed: p.closed,
-                    });
-                }
-                out
-            } else {
-                let others = self.operand(second, depth + 1)?;
-                match op {
-                    "DIFFERENCE" => match subtract(parts, &others, self.deadline) {
-                        Ok(parts) => parts,
-                        Err(Cut::Failed) => {
-                            return Err(degenerate(&b, "boolean difference failed"))
-                        }
-                        Err(Cut::TimeLimit) => return Err(time_limit(&b)),
-                    },
-                    "UNION" => {
-                        parts.extend(others);
-                        parts
-                    }
-                    "INTERSECTION" => intersect(parts, &others)
-                        .ok_or_else(|| degenerate(&b, "boolean intersection failed"))?,
-                    _ => return Err(missing(&b, "Operator")),
-                }
-            };
+            parts = self.apply(b, second, parts, depth)?;
             let n = parts.iter().map(|p| p.mesh.triangles.len()).sum();
             self.count(&b, n)?;
         }
+        Ok(parts)
+    }
+
+    /// The boolean result `b` of `parts` (its first operand) and `second`. What cannot be
+    /// read or applied of `second` is left out with a [`GeomError::LeftUncut`] warning (as
+    /// IfcOpenShell keeps the first operand); only the time limit and the bounds on items and
+    /// triangles are errors.
+    fn apply(
+        &mut self,
+        b: Entity<'_>,
+        second: Entity<'_>,
+        parts: Vec<Part>,
+        depth: usize,
+    ) -> Result<Vec<Part>, GeomError> {
+        let op = b.get("Operator").and_then(|v| v.as_enum()).unwrap_or("");
+        if second.is_a("IfcHalfSpaceSolid") {
+            let hs = half_space(second, &self.units).and_then(|mut hs| match op {
+                "DIFFERENCE" => Ok(hs),
+                "INTERSECTION" if hs.prism.is_none() => {
+                    hs.outward = -hs.outward;
+                    Ok(hs)
+                }
+                _ => Err(unsupported(&b, "this operation with a half-space")),
+            });
+            let hs = match hs {
+                Ok(hs) => hs,
+                Err(e) => return self.left_out(&b, &second, e, parts),
+            };
+            let (mut out, mut failed) = (Vec::with_capacity(parts.len()), false);
+            for p in parts {
+                match clip(&p.mesh, &hs) {
+                    Some(mesh) => {
+                        self.count(&b, mesh.triangles.len())?;
+                        out.push(Part {
+                            mesh,
+                            closed: p.closed,
+                        });
+                    }
+                    None => {
+                        failed = true;
+                        out.push(p);
+                    }
+                }
+            }
+            if failed {
+                let why = degenerate(&b, "clipping by a half-space failed");
+                self.warnings.push(left_uncut(&b, &second, why));
+            }
+            return Ok(out);
+        }
+        let others = match self.operand(second, depth + 1) {
+            Ok(others) => others,
+            Err(e) => return self.left_out(&b, &second, e, parts),
+        };
+        match op {
+            "DIFFERENCE" => {
+                let cut = subtract(parts, &others, self.deadline)
+                    .map_err(|Cut::TimeLimit| time_limit(&b))?;
+                if !cut.failed.is_empty() {
+                    let why = degenerate(&b, "boolean difference failed");
+                    self.warnings.push(left_uncut(&b, &second, why));
+                }
+                Ok(cut.parts)
+            }
+            "UNION" => Ok(parts.into_iter().chain(others).collect()),
+            "INTERSECTION" => match intersect(&parts, &others) {
+                Some(common) => Ok(common),
+                None => {
+                    let why = degenerate(&b, "boolean intersection failed");
+                    self.left_out(&b, &second, why, parts)
+                }
+            },
+            _ => self.left_out(&b, &second, missing(&b, "Operator"), parts),
+        }
+    }
+
+    /// `parts` as they are, with a warning that `b` is meshed without `second` because of
+    /// `e`; or `e` itself when it is the time limit or a bound on the whole was reached.
+    fn left_out(
+        &mut self,
+        b: &Entity<'_>,
+        second: &Entity<'_>,
+        e: GeomError,
+        parts: Vec<Part>,
+    ) -> Result<Vec<Part>, GeomError> {
+        if matches!(e, GeomError::TimeLimit { .. })
+            || self.items > MAX_ITEMS
+            || self.triangles > MAX_TRIANGLES
+        {
+            return Err(e);
+        }
+        self.warnings.push(left_uncut(b, second, e));
         Ok(parts)
     }
 }
@@ -447,10 +514,18 @@ fn grow(mesh: &Mesh, margin: f64) -> Option<Mesh> {
 /// Why [`subtract`] gave up.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Cut {
-    /// The boolean library failed.
-    Failed,
     /// The deadline passed.
     TimeLimit,
+}
+
+/// What [`subtract`] made.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Subtracted {
+    /// The parts, cut.
+    pub parts: Vec<Part>,
+    /// The cutters (indices into [`subtract`]'s `cutters`, ascending) that could not be made
+    /// solids or subtracted: the parts are cut by the others only.
+    pub failed: Vec<usize>,
 }
 
 /// True once `deadline` (if any) has passed.
@@ -468,7 +543,9 @@ fn time_limit(e: &Entity<'_>) -> GeomError {
 }
 
 /// Every closed part of `parts` less every closed part of `cutters` that can touch it; open
-/// parts are kept as they are. Fails when the boolean library fails or `deadline` passes
+/// parts are kept as they are. A cutter the boolean library cannot take (not a solid, or
+/// the difference fails) is passed over and listed in [`Subtracted::failed`], as
+/// IfcOpenShell passes over an opening it cannot apply. Fails only when `deadline` passes
 /// (checked before every difference).
 ///
 /// Each cutter is first grown by [`CUTTER_MARGIN`] on every side (scaled about the centre of
@@ -479,23 +556,19 @@ pub fn subtract(
     parts: Vec<Part>,
     cutters: &[Part],
     deadline: Option<Instant>,
-) -> Result<Vec<Part>, Cut> {
-    let cutters: Vec<(Part, (DVec3, DVec3))> = cutters
+) -> Result<Subtracted, Cut> {
+    let cutters: Vec<(usize, Mesh, (DVec3, DVec3))> = cutters
         .iter()
-        .filter(|c| c.closed)
-        .filter_map(|c| {
+        .enumerate()
+        .filter(|(_, c)| c.closed)
+        .filter_map(|(i, c)| {
             let grown = grow(&c.mesh, CUTTER_MARGIN)?;
             let bounds = grown.bounds()?;
-            Some((
-                Part {
-                    mesh: grown,
-                    closed: true,
-                },
-                bounds,
-            ))
+            Some((i, grown, bounds))
         })
         .collect();
     let mut solids: Vec<Option<Option<Solid>>> = vec![None; cutters.len()];
+    let mut failed = Vec::new();
     let mut out = Vec::with_capacity(parts.len());
     for part in parts {
         let Some(bounds) = part.mesh.bounds() else {
@@ -503,7 +576,7 @@ pub fn subtract(
         };
         let margin = 1e-9 * (bounds.1 - bounds.0).length().max(1.0);
         let touching: Vec<usize> = (0..cutters.len())
-            .filter(|&i| boxes_overlap(bounds, cutters[i].1, margin))
+            .filter(|&i| boxes_overlap(bounds, cutters[i].2, margin))
             .collect();
         if !part.closed || touching.is_empty() {
             out.push(part);
@@ -517,9 +590,10 @@ pub fn subtract(
             if past(deadline) {
                 return Err(Cut::TimeLimit);
             }
-            let cutter = solids[i].get_or_insert_with(|| Solid::new(&cutters[i].0.mesh));
-            if let Some(c) = cutter {
-                solid = solid.difference(c).ok_or(Cut::Failed)?;
+            let cutter = solids[i].get_or_insert_with(|| Solid::new(&cutters[i].1));
+            match cutter.as_ref().and_then(|c| solid.difference(c)) {
+                Some(cut) => solid = cut,
+                None => failed.push(cutters[i].0),
             }
         }
         if !solid.is_empty() {
@@ -529,11 +603,13 @@ pub fn subtract(
             });
         }
     }
-    Ok(out)
+    failed.sort_unstable();
+    failed.dedup();
+    Ok(Subtracted { parts: out, failed })
 }
 
 /// What the closed parts of `parts` share with the union of the closed parts of `others`.
-fn intersect(parts: Vec<Part>, others: &[Part]) -> Option<Vec<Part>> {
+fn intersect(parts: &[Part], others: &[Part]) -> Option<Vec<Part>> {
     let mut union: Option<Solid> = None;
     for o in others.iter().filter(|o| o.closed) {
         let s = Solid::new(&o.mesh)?;
@@ -546,7 +622,7 @@ fn intersect(parts: Vec<Part>, others: &[Part]) -> Option<Vec<Part>> {
         return Some(Vec::new());
     };
     let mut out = Vec::new();
-    for p in parts.into_iter().filter(|p| p.closed) {
+    for p in parts.iter().filter(|p| p.closed) {
         let r = Solid::new(&p.mesh)?.intersection(&union)?;
         if !r.is_empty() {
             out.push(Part {

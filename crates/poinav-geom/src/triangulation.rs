@@ -2,17 +2,38 @@
 //! and polygonal faces in 3D (projected on their best-fitting plane, Newell's normal).
 
 use glam::{DVec2, DVec3};
+use rustc_hash::FxHashMap;
+
+use crate::self_crossing::{proper_crossings, Crossings};
 
 /// Most points one polygon (outer boundary and holes together) may have.
 pub const MAX_POLYGON_POINTS: usize = 1 << 20;
 
+/// Polygons with more points than this are checked for self-crossings before the ear clipper
+/// sees them: on a self-crossing polygon its work grows with the cube of the point count (a
+/// few milliseconds at this size, minutes at 4,000 points).
+pub const CROSSING_CHECK_ABOVE: usize = 128;
+
 /// Triangles of the polygon `outer` with `holes`, as indices into the points of `outer`
-/// followed by those of each hole, counter-clockwise in the plane. `None` when the polygon
-/// cannot be triangulated (fewer than three points, too many points, or a numeric failure).
+/// followed by those of each hole, counter-clockwise in the plane, every point used (see
+/// [`restore_skipped`]). `None` when the polygon
+/// cannot be triangulated (fewer than three points, too many points, a numeric failure, or
+/// more than [`CROSSING_CHECK_ABOVE`] points and edges that cross: profiles are resolved
+/// before, in [`crate::profile`]).
 pub fn triangulate_2d(outer: &[DVec2], holes: &[Vec<DVec2>]) -> Option<Vec<[u32; 3]>> {
     let n = outer.len() + holes.iter().map(Vec::len).sum::<usize>();
     if outer.len() < 3 || n > MAX_POLYGON_POINTS {
         return None;
+    }
+    if n > CROSSING_CHECK_ABOVE {
+        let rings: Vec<&[DVec2]> = std::iter::once(outer)
+            .chain(holes.iter().map(Vec::as_slice))
+            .collect();
+        // Rings that only touch or overlap are clipped as they come (a keyhole is what the
+        // ear clipper makes of a hole itself).
+        if proper_crossings(&rings) != Crossings::None {
+            return None;
+        }
     }
     let points: Vec<DVec2> = outer
         .iter()
@@ -39,12 +60,15 @@ pub fn triangulate_2d(outer: &[DVec2], holes: &[Vec<DVec2>]) -> Option<Vec<[u32;
         at += h.len();
     }
     let indices = earcutr::earcut(&flat, &starts, 2).ok()?;
-    Some(
-        indices
-            .chunks_exact(3)
-            .map(|t| ccw(&points, [t[0] as u32, t[1] as u32, t[2] as u32]))
-            .collect(),
-    )
+    let mut tris: Vec<[u32; 3]> = indices
+        .chunks_exact(3)
+        .map(|t| ccw(&points, [t[0] as u32, t[1] as u32, t[2] as u32]))
+        .collect();
+    let lengths: Vec<usize> = std::iter::once(outer.len())
+        .chain(holes.iter().map(Vec::len))
+        .collect();
+    restore_skipped(&mut tris, &lengths);
+    Some(tris)
 }
 
 /// The triangle with its corners ordered counter-clockwise.
@@ -98,7 +122,8 @@ pub fn triangulate_3d(outer: &[DVec3], holes: &[Vec<DVec3>]) -> Option<Vec<[u32;
 /// Puts back into `tris` the boundary points the ear clipper left out (it drops points that
 /// lie on a straight line between their neighbours): each run of left-out points of a ring
 /// (`ring_lengths` give the rings in index order) becomes a fan in the triangle that spans
-/// it, so that a neighbouring face sharing those points meets this one without cracks.
+/// it, so that a neighbouring face sharing those points (an extrusion's side, the next face
+/// of a brep) meets this one without cracks. [`triangulate_2d`] does this for every caller.
 pub fn restore_skipped(tris: &mut Vec<[u32; 3]>, ring_lengths: &[usize]) {
     let n: usize = ring_lengths.iter().sum();
     let mut used = vec![false; n];
@@ -111,6 +136,13 @@ pub fn restore_skipped(tris: &mut Vec<[u32; 3]>, ring_lengths: &[usize]) {
     }
     if used.iter().all(|&u| u) {
         return;
+    }
+    // Directed edge -> its triangle, kept up to date as fans replace triangles.
+    let mut edges: FxHashMap<(u32, u32), usize> = FxHashMap::default();
+    for (ti, t) in tris.iter().enumerate() {
+        for k in 0..3 {
+            edges.insert((t[k], t[(k + 1) % 3]), ti);
+        }
     }
     let mut start = 0;
     for &len in ring_lengths {
@@ -131,7 +163,7 @@ pub fn restore_skipped(tris: &mut Vec<[u32; 3]>, ring_lengths: &[usize]) {
             }
             let b = ring[j];
             if !run.is_empty() {
-                fan_in(tris, a, b, &run);
+                fan_in(tris, &mut edges, a, b, &run);
             }
             k = j;
             if k == first {
@@ -142,30 +174,47 @@ pub fn restore_skipped(tris: &mut Vec<[u32; 3]>, ring_lengths: &[usize]) {
 }
 
 /// Replaces the triangle with edge a-b by a fan through `run` (the points between a and b).
-fn fan_in(tris: &mut Vec<[u32; 3]>, a: u32, b: u32, run: &[u32]) {
-    for ti in 0..tris.len() {
-        let t = tris[ti];
-        for k in 0..3 {
-            let (x, y, c) = (t[k], t[(k + 1) % 3], t[(k + 2) % 3]);
-            let chain: Vec<u32> = if (x, y) == (a, b) {
-                std::iter::once(a)
-                    .chain(run.iter().copied())
-                    .chain([b])
-                    .collect()
-            } else if (x, y) == (b, a) {
-                std::iter::once(b)
-                    .chain(run.iter().rev().copied())
-                    .chain([a])
-                    .collect()
-            } else {
-                continue;
-            };
-            tris[ti] = [chain[0], chain[1], c];
-            for w in chain[1..].windows(2) {
-                tris.push([w[0], w[1], c]);
-            }
-            return;
+fn fan_in(
+    tris: &mut Vec<[u32; 3]>,
+    edges: &mut FxHashMap<(u32, u32), usize>,
+    a: u32,
+    b: u32,
+    run: &[u32],
+) {
+    let (ti, chain): (usize, Vec<u32>) = if let Some(&ti) = edges.get(&(a, b)) {
+        let chain = std::iter::once(a).chain(run.iter().copied()).chain([b]);
+        (ti, chain.collect())
+    } else if let Some(&ti) = edges.get(&(b, a)) {
+        let chain = std::iter::once(b)
+            .chain(run.iter().rev().copied())
+            .chain([a]);
+        (ti, chain.collect())
+    } else {
+        return;
+    };
+    let t = tris[ti];
+    let (x, y) = (chain[0], chain[chain.len() - 1]);
+    let Some(k) = (0..3).find(|&k| (t[k], t[(k + 1) % 3]) == (x, y)) else {
+        return;
+    };
+    let c = t[(k + 2) % 3];
+    for k in 0..3 {
+        edges.remove(&(t[k], t[(k + 1) % 3]));
+    }
+    let mut put = |tris: &mut Vec<[u32; 3]>, at: usize, t: [u32; 3]| {
+        if at == tris.len() {
+            tris.push(t);
+        } else {
+            tris[at] = t;
         }
+        for k in 0..3 {
+            edges.insert((t[k], t[(k + 1) % 3]), at);
+        }
+    };
+    put(tris, ti, [chain[0], chain[1], c]);
+    for w in chain[1..].windows(2) {
+        let at = tris.len();
+        put(tris, at, [w[0], w[1], c]);
     }
 }
 
@@ -251,5 +300,28 @@ mod tests {
             "{normal}"
         );
         assert!(triangulate_3d(&pts[..2], &[]).is_none());
+    }
+
+    #[test]
+    fn a_large_self_crossing_polygon_is_refused_not_clipped() {
+        // 1,000 points alternately on either side of the centre: every edge crosses most
+        // others. The ear clipper takes about a minute on it (unoptimised); it is refused.
+        let asterisk: Vec<DVec2> = (0..1000)
+            .map(|i| {
+                let side = if i % 2 == 0 { 1.0 } else { -1.0 };
+                DVec2::from_angle(std::f64::consts::TAU * i as f64 / 1000.0) * side
+            })
+            .collect();
+        assert!(triangulate_2d(&asterisk, &[]).is_none());
+        // Small ones are still clipped as they come.
+        assert_eq!(
+            triangulate_2d(&asterisk[..100], &[]).map(|t| t.len()),
+            Some(49)
+        );
+        // A large simple polygon is not refused: a 1,000-gon gives 998 triangles.
+        let circle: Vec<DVec2> = (0..1000)
+            .map(|i| DVec2::from_angle(std::f64::consts::TAU * i as f64 / 1000.0))
+            .collect();
+        assert_eq!(triangulate_2d(&circle, &[]).map(|t| t.len()), Some(998));
     }
 }

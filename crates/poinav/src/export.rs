@@ -111,7 +111,8 @@ pub fn run(export: &Export) -> anyhow::Result<ExitCode> {
 }
 
 /// The elements left out of the export, as warnings: those whose mesh failed and those
-/// without a representation.
+/// without a representation; and those exported without an opening or boolean operand that
+/// could not be made.
 fn problems(model: &Model, meshes: &poinav_geom::ModelMeshes) -> Vec<Warning> {
     let class = |id| model.entity(id).map(|e| e.type_name().to_string());
     let failed = meshes
@@ -135,5 +136,10 @@ fn problems(model: &Model, meshes: &poinav_geom::ModelMeshes) -> Vec<Warning> {
         )
         .grouped_by("has no Representation: not in the export")
     });
-    failed.chain(absent).collect()
+    // Meshed, but without an opening or boolean operand that could not be made.
+    let uncut = meshes
+        .uncut
+        .iter()
+        .map(|(id, e)| Warning::of(id, class(*id), e.to_string()));
+    failed.chain(absent).chain(uncut).collect()
 }

@@ -1,0 +1,175 @@
+"""Elements that must be meshed even where part of their geometry is broken or odd, written and
+meshed with IfcOpenShell, for poinav-geom's test `robust_vs_ifcopenshell.rs`.
+
+Usage: .venv/bin/python tests/ifcos/author_robust.py OUT.ifc
+
+IFC4, metres, radians. One element per case (its Name is the case), each placed 5 m further
+along y, all in one storey:
+
+- a profile drawn as a star in one stroke (the polygon {1001/2}: each of 1,001 points on the
+  unit circle joined to the next but one, twice around), extruded 1 m: IfcOpenShell fills
+  what it winds around (nearly the unit disc);
+- walls (4 x 0.2 x 3 m) whose opening cannot be made: an opening with Depth 0, one without
+  a representation, one whose profile encloses no area, and a wall with a good opening and a
+  bad one; IfcOpenShell keeps the wall uncut (cut by the good opening only);
+- boolean results whose second operand cannot be made (Depth 0): DIFFERENCE, UNION and
+  INTERSECTION, and a clipping whose half-space plane has a zero normal; IfcOpenShell keeps
+  the first operand;
+- an IfcMirroredProfileDef (an L mirrored about its y axis) and the same as an
+  IfcDerivedProfileDef with a mirroring operator;
+- an IfcCurveBoundedPlane (a 3 x 2 m rectangle with a 1 x 0.5 m hole, on a plane tilted
+  about x by 30 degrees), an open surface.
+
+Every element is meshed by ifcopenshell.geom (world coordinates, default settings). Prints one
+JSON object mapping each case name to {min, max, volume, area} of IfcOpenShell's mesh (or
+{error} when it gives none), plus `left_out`: the STEP ids of the openings or operands that
+cannot be made, which poinav names in its warnings.
+"""
+
+import hashlib
+import json
+import math
+import sys
+import uuid
+
+import ifcopenshell
+import ifcopenshell.geom
+import ifcopenshell.guid
+import numpy as np
+
+f = ifcopenshell.file(schema="IFC4")
+
+
+def gid(name):
+    h = hashlib.md5(("poinav-test-robust:" + name).encode()).hexdigest()
+    return ifcopenshell.guid.compress(uuid.UUID(h).hex)
+
+
+def pt(*c):
+    return f.createIfcCartesianPoint([float(x) for x in c])
+
+
+def d(*c):
+    return f.createIfcDirection([float(x) for x in c])
+
+
+def ax(x=0.0, y=0.0, z=0.0, axis=None, ref=None):
+    return f.createIfcAxis2Placement3D(pt(x, y, z), d(*axis) if axis else None, d(*ref) if ref else None)
+
+
+ctx = f.createIfcGeometricRepresentationContext(None, "Model", 3, 1.0e-5, ax(), None)
+body = f.createIfcGeometricRepresentationSubContext("Body", "Model", None, None, None, None, ctx, None, "MODEL_VIEW", None)
+units = f.createIfcUnitAssignment(
+    [
+        f.createIfcSIUnit(None, "LENGTHUNIT", None, "METRE"),
+        f.createIfcSIUnit(None, "PLANEANGLEUNIT", None, "RADIAN"),
+    ]
+)
+project = f.createIfcProject(gid("project"), None, "Robust", None, None, None, None, [ctx], units)
+site_pl = f.createIfcLocalPlacement(None, ax())
+site = f.createIfcSite(gid("site"), None, "Site", None, None, site_pl, None, None, "ELEMENT", None, None, None, None, None)
+storey_pl = f.createIfcLocalPlacement(site_pl, ax())
+storey = f.createIfcBuildingStorey(gid("storey"), None, "Storey", None, None, storey_pl, None, None, "ELEMENT", 0.0)
+f.createIfcRelAggregates(gid("agg project"), None, None, None, project, [site])
+f.createIfcRelAggregates(gid("agg site"), None, None, None, site, [storey])
+elements = []
+left_out = {}
+
+
+def shape(items, kind="SweptSolid"):
+    rep = f.createIfcShapeRepresentation(body, "Body", kind, items)
+    return f.createIfcProductDefinitionShape(None, None, [rep])
+
+
+def case(name, items, cls="IfcBuildingElementProxy", kind="SweptSolid", openings=()):
+    """An element `name` 5 m further along y than the last, its body `items`, voided by
+    `openings` (each a product definition shape or None)."""
+    pl = f.createIfcLocalPlacement(storey_pl, ax(0.0, 5.0 * len(elements), 0.0))
+    e = f.create_entity(cls, GlobalId=gid(name), Name=name, ObjectPlacement=pl, Representation=shape(items, kind))
+    for k, o in enumerate(openings):
+        op_pl = f.createIfcLocalPlacement(pl, ax())
+        op = f.createIfcOpeningElement(gid(f"{name} opening {k}"), None, f"{name} opening {k}", None, None, op_pl, o, None, "OPENING")
+        f.createIfcRelVoidsElement(gid(f"{name} voids {k}"), None, None, None, e, op)
+    elements.append(e)
+    return e
+
+
+def box(x, y, z, dx, dy, dz):
+    """An extruded rectangle from (x, y, z) spanning (dx, dy, dz); dz = 0 cannot be made."""
+    prof = f.createIfcRectangleProfileDef("AREA", None, f.createIfcAxis2Placement2D(pt(x + dx / 2, y + dy / 2), None), dx, dy)
+    return f.createIfcExtrudedAreaSolid(prof, ax(0.0, 0.0, z), d(0, 0, 1), dz)
+
+
+def wall():
+    return box(0, 0, 0, 4, 0.2, 3)
+
+
+# --- A star in one stroke.
+n = 1001
+star = [pt(math.cos(2 * math.pi * (2 * i % n) / n), math.sin(2 * math.pi * (2 * i % n) / n)) for i in range(n)]
+star_profile = f.createIfcArbitraryClosedProfileDef("AREA", None, f.createIfcPolyline(star + [star[0]]))
+case("star_1001", [f.createIfcExtrudedAreaSolid(star_profile, ax(), d(0, 0, 1), 1.0)])
+
+# --- Walls whose openings cannot be made.
+flat_opening = box(1, -0.5, 0, 1, 1.2, 0.0)
+w = case("opening_depth_zero", [wall()], "IfcWall", openings=[shape([flat_opening])])
+left_out["opening_depth_zero"] = [w.HasOpenings[0].RelatedOpeningElement.id()]
+w = case("opening_without_body", [wall()], "IfcWall", openings=[None])
+left_out["opening_without_body"] = [w.HasOpenings[0].RelatedOpeningElement.id()]
+line = f.createIfcPolyline([pt(0, 0), pt(1, 0), pt(2, 0), pt(0, 0)])
+no_area = f.createIfcExtrudedAreaSolid(f.createIfcArbitraryClosedProfileDef("AREA", None, line), ax(), d(0, 0, 1), 2.0)
+w = case("opening_without_area", [wall()], "IfcWall", openings=[shape([no_area])])
+left_out["opening_without_area"] = [w.HasOpenings[0].RelatedOpeningElement.id()]
+w = case("good_and_bad_openings", [wall()], "IfcWall",
+         openings=[shape([box(1, -0.5, 0, 1, 1.2, 2)]), shape([box(2.5, -0.5, 0, 1, 1.2, 0.0)])])
+left_out["good_and_bad_openings"] = [w.HasOpenings[1].RelatedOpeningElement.id()]
+
+# --- Boolean results whose second operand cannot be made.
+for op in ["DIFFERENCE", "UNION", "INTERSECTION"]:
+    bad = box(1, -0.5, 0, 1, 1.2, 0.0)
+    case(f"boolean_{op.lower()}_bad_operand", [f.createIfcBooleanResult(op, wall(), bad)])
+    left_out[f"boolean_{op.lower()}_bad_operand"] = [bad.id()]
+no_normal = f.createIfcHalfSpaceSolid(f.createIfcPlane(f.createIfcAxis2Placement3D(pt(0, 0, 2), d(0, 0, 0), None)), False)
+case("clipping_bad_plane", [f.createIfcBooleanClippingResult("DIFFERENCE", wall(), no_normal)])
+left_out["clipping_bad_plane"] = [no_normal.id()]
+
+# --- Mirrored profiles.
+ell = f.createIfcArbitraryClosedProfileDef(
+    "AREA", None, f.createIfcPolyline([pt(0, 0), pt(2, 0), pt(2, 1), pt(1, 1), pt(1, 3), pt(0, 3), pt(0, 0)])
+)
+case("mirrored_profile", [f.createIfcExtrudedAreaSolid(f.createIfcMirroredProfileDef("AREA", None, ell, None, None), ax(), d(0, 0, 1), 1.0)])
+mirror = f.createIfcCartesianTransformationOperator2D(d(-1, 0), d(0, 1), pt(0, 0), 1.0)
+derived = f.createIfcDerivedProfileDef("AREA", None, ell, mirror, None)
+case("derived_mirror_profile", [f.createIfcExtrudedAreaSolid(derived, ax(), d(0, 0, 1), 1.0)])
+
+# --- A curve bounded plane with a hole, tilted 30 degrees about x.
+c, s = math.cos(math.radians(30)), math.sin(math.radians(30))
+plane = f.createIfcPlane(ax(1.0, 0.0, 0.5, axis=(0, -s, c), ref=(1, 0, 0)))
+outer = f.createIfcPolyline([pt(0, 0), pt(3, 0), pt(3, 2), pt(0, 2), pt(0, 0)])
+hole = f.createIfcPolyline([pt(1, 0.5), pt(1, 1), pt(2, 1), pt(2, 0.5), pt(1, 0.5)])
+case("curve_bounded_plane", [f.createIfcCurveBoundedPlane(plane, outer, [hole])], kind="Surface")
+
+f.createIfcRelContainedInSpatialStructure(gid("contained"), None, None, None, elements, storey)
+f.write(sys.argv[1])
+
+settings = ifcopenshell.geom.settings()
+settings.set("use-world-coords", True)
+out = {}
+for e in elements:
+    try:
+        geometry = ifcopenshell.geom.create_shape(settings, e).geometry
+    except Exception as ex:  # noqa: BLE001 - reported, the test decides
+        out[e.Name] = {"error": str(ex).split(", representation")[0]}
+        continue
+    v = np.array(geometry.verts, dtype=float).reshape(-1, 3)
+    tri = v[np.array(geometry.faces, dtype=int).reshape(-1, 3)]
+    cross = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
+    out[e.Name] = {
+        "min": v.min(axis=0).tolist(),
+        "max": v.max(axis=0).tolist(),
+        "volume": float(np.einsum("ij,ij->i", tri[:, 0], np.cross(tri[:, 1], tri[:, 2])).sum() / 6.0),
+        "area": float(np.linalg.norm(cross, axis=1).sum() / 2.0),
+    }
+    if e.Name in left_out:
+        out[e.Name]["left_out"] = left_out[e.Name]
+json.dump(out, sys.stdout, indent=1, sort_keys=True)
