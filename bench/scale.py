@@ -20,10 +20,11 @@ them there):
   simulate      simulate scenario.toml: 2 robots, 30 simulated seconds, on the lowest storey
                 with spaces, each starting at the centre of one of its first two spaces and
                 routing to the other's (centres from IfcOpenShell's geometry of those spaces)
-Wall time and peak RSS come from the child alone (os.wait4's rusage). A command still running
+Wall time, CPU time (user + sys) and peak RSS come from the child alone (os.wait4's rusage);
+the load average is printed before and after each model (the machine may be shared). A command still running
 after --timeout seconds (default 600) is killed and reported as `timeout`.
-Prints a markdown table per model: exit code, wall time, peak RSS, time / export glb's time,
-peak RSS / file size. Exit 0, or 1 when BIN or a model is missing.
+Prints a markdown table per model: exit code, wall time, CPU time, peak RSS, time / export
+glb's time, peak RSS / file size. Exit 0, or 1 when BIN or a model is missing.
 """
 
 import argparse
@@ -44,7 +45,7 @@ DEFAULT_MODELS = ["heavy-furnished-ft.ifc", "synthetic-x8.ifc"]
 
 
 def run(cmd, timeout, cwd):
-    """(exit code or None on timeout, wall seconds, peak RSS bytes, stdout tail)."""
+    """(exit code or None on timeout, wall seconds, peak RSS bytes, stdout, CPU seconds)."""
     out = open(Path(cwd) / "stdout.txt", "wb")
     err = open(Path(cwd) / "stderr.txt", "wb")
     start = time.perf_counter()
@@ -64,7 +65,8 @@ def run(cmd, timeout, cwd):
     proc.returncode = 0  # reaped above
     out.close()
     err.close()
-    return code, wall, usage.ru_maxrss * 1024, (Path(cwd) / "stdout.txt").read_text(errors="replace")
+    return (code, wall, usage.ru_maxrss * 1024, (Path(cwd) / "stdout.txt").read_text(errors="replace"),
+            usage.ru_utime + usage.ru_stime)
 
 
 def space_centres(model, spaces):
@@ -110,12 +112,12 @@ def bench_model(poinav, model, timeout, work):
     def row(name, cmd, budget=timeout):
         d = work / name.replace(" ", "-")
         d.mkdir(parents=True, exist_ok=True)
-        code, wall, rss, out = run([str(poinav)] + cmd, budget, d)
+        code, wall, rss, out, cpu = run([str(poinav)] + cmd, budget, d)
         note = ""
         if code:
             lines = (d / "stderr.txt").read_text(errors="replace").strip().splitlines()
             note = lines[-1] if lines else ""
-        rows.append({"name": name, "code": code, "wall": wall, "rss": rss, "note": note})
+        rows.append({"name": name, "code": code, "wall": wall, "cpu": cpu, "rss": rss, "note": note})
         return code, out
 
     code, out = row("inspect", ["inspect", str(model), "--json"])
@@ -124,23 +126,24 @@ def bench_model(poinav, model, timeout, work):
     row("export glb", ["export", "glb", str(model), "-o", str(work / "model.glb")])
 
     # plan: every storey, one process each, one budget.
-    total, peak, done, code = 0.0, 0, 0, 0
+    total, cpu_total, peak, done, code = 0.0, 0.0, 0, 0, 0
     storeys = info["storeys"]
     for k, s in enumerate(storeys):
         d = work / "plan"
         d.mkdir(exist_ok=True)
         left = timeout - total
-        c, wall, rss, _ = run([str(poinav), "plan", str(model), "--storey", s["guid"],
-                               "-o", str(d / f"plan-{k}.svg")], max(left, 0.1), d)
+        c, wall, rss, _, cpu = run([str(poinav), "plan", str(model), "--storey", s["guid"],
+                                    "-o", str(d / f"plan-{k}.svg")], max(left, 0.1), d)
         total += wall
+        cpu_total += cpu
         peak = max(peak, rss)
         if c is None:
             code = None
             break
         done += 1
         code = code or c
-    rows.append({"name": f"plan ({done} of {len(storeys)} storeys)", "code": code, "wall": total, "rss": peak,
-                 "note": ""})
+    rows.append({"name": f"plan ({done} of {len(storeys)} storeys)", "code": code, "wall": total,
+                 "cpu": cpu_total, "rss": peak, "note": ""})
 
     row("audit", ["audit", str(model), "-o", str(work / "audit" / "report.html")])
     row("export nav2", ["export", "nav2", str(model), "-o", str(work / "nav2")])
@@ -167,16 +170,16 @@ def bench_model(poinav, model, timeout, work):
                 row("simulate (wall-following)", ["simulate", str(path), "-o", str(work / "sim-walls")])
     glb = next(r for r in rows if r["name"] == "export glb")
     print(f"\n### {model.name} ({size / 1e6:.1f} MB)\n")
-    print("| command | exit | wall time | peak RSS | time / export glb | peak RSS / file size |")
-    print("|---|---|---|---|---|---|")
+    print("| command | exit | wall time | CPU time | peak RSS | time / export glb | peak RSS / file size |")
+    print("|---|---|---|---|---|---|---|")
     for r in rows:
         timed_out = r["code"] is None
         wall = f"timeout ({r['wall']:.0f} s)" if timed_out else f"{r['wall']:.2f} s"
         ratio = "-" if timed_out or glb["code"] is None else f"{r['wall'] / glb['wall']:.1f}x"
         if timed_out and glb["code"] is not None:
             ratio = f"> {r['wall'] / glb['wall']:.0f}x"
-        print(f"| {r['name']} | {'-' if timed_out else r['code']} | {wall} | {r['rss'] / 2**20:.0f} MiB | "
-              f"{ratio} | {r['rss'] / size:.1f}x |")
+        print(f"| {r['name']} | {'-' if timed_out else r['code']} | {wall} | {r['cpu']:.2f} s | "
+              f"{r['rss'] / 2**20:.0f} MiB | {ratio} | {r['rss'] / size:.1f}x |")
     notes = [f"- {r['name']} (exit {r['code']}): {r['note']}" for r in rows if r["code"] and r["note"]]
     if notes:
         print("\n" + "\n".join(notes))
@@ -205,7 +208,12 @@ def main():
     for model in models:
         work = Path(tempfile.mkdtemp(prefix="poinav-scale-"))
         try:
+            before = os.getloadavg()
             bench_model(args.poinav, model.resolve(), args.timeout, work)
+            after = os.getloadavg()
+            print(f"\nload average (1, 5, 15 min) before: {before[0]:.2f} {before[1]:.2f} {before[2]:.2f}, "
+                  f"after: {after[0]:.2f} {after[1]:.2f} {after[2]:.2f}")
+            sys.stdout.flush()
         finally:
             if args.keep:
                 dest = args.keep / model.stem

@@ -142,13 +142,14 @@ pub fn bcf_bytes(
                     at_ground: building.at_ground(fi),
                     ..options.grid.clone()
                 };
-                let g = OccupancyGrid::build(floor, &profiles[i.profile], &grid_options).map_err(
-                    |source| BcfError::Grid {
+                // The storey as the audit rasterised it: cropped to its own extent.
+                let cropped = poinav_nav::extent::for_grid(floor, &grid_options);
+                let g = OccupancyGrid::build(&cropped, &profiles[i.profile], &grid_options)
+                    .map_err(|source| BcfError::Grid {
                         floor: floor.name.clone(),
                         profile: i.profile_name.clone(),
                         source,
-                    },
-                )?;
+                    })?;
                 e.insert(g)
             }
         };

@@ -4,7 +4,6 @@
 //! nav2_map_server reads `map.pgm` in trinary mode: free 0, occupied 100, unknown -1.
 
 use glam::DVec2;
-use poinav_nav::nav2::cropped_building;
 use poinav_nav::{Building, CellState, Floor, Nav2Options, NavError, Navigator};
 use poinav_roles::RobotProfile;
 
@@ -40,8 +39,7 @@ pub fn storey_map(
     options: &Nav2Options,
 ) -> Result<StoreyMap, NavError> {
     let building = Building::single(floor.clone());
-    let cropped = cropped_building(&building, options);
-    let nav = Navigator::new(&cropped, profile, &options.nav)?;
+    let nav = Navigator::new(&building, profile, &options.nav)?;
     let g = &nav.floors[0].grid.occupancy;
     Ok(StoreyMap {
         resolution_m: g.resolution_m,

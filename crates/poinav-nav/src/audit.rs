@@ -3,7 +3,9 @@
 //! centre can cross each door in the inflated grid, and every space reachable or not from the
 //! entrances (exterior doors) or a named start, with the doors that block it. Written as JSON,
 //! one SVG floor plan per storey and profile coloured by status, and `report.html` wrapping
-//! them.
+//! them. Each storey is audited only where there is something to navigate (its own extent,
+//! [`crate::extent`]); a storey without spaces or doors is skipped, listed in
+//! [`AuditReport::skipped`] with why, and not drawn.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -171,6 +173,12 @@ pub struct AuditReport {
     /// The elements rasterising and the graph gave up on for any profile ([`crate::bounds`]),
     /// sorted, each once; their messages are in `warnings` too.
     pub gave_up: Vec<crate::bounds::GaveUp>,
+    /// The storeys with nothing to navigate (no spaces or doors), with why: not rasterised,
+    /// not drawn.
+    pub skipped: Vec<crate::extent::SkippedStorey>,
+    /// Every other storey was rasterised and is drawn over its own extent (its spaces, doors
+    /// and walls) grown by this many metres ([`crate::extent::margin`]).
+    pub crop_margin_m: f64,
     /// Per profile, in the order given.
     pub profiles: Vec<ProfileAudit>,
 }
@@ -193,11 +201,13 @@ pub fn audit_with_progress(
 ) -> Result<AuditReport, NavError> {
     let mut out = Vec::new();
     let mut gave_up = Vec::new();
+    let mut skipped = Vec::new();
     for p in profiles {
         let nav = Navigator::with_progress(building, p, &options.nav, progress)?;
         progress(crate::progress::Phase::Auditing, out.len(), profiles.len());
         out.push(audit_profile(&nav, options.start.as_deref())?);
         progress(crate::progress::Phase::Auditing, out.len(), profiles.len());
+        skipped = nav.skipped();
         gave_up.extend(nav.gave_up);
     }
     gave_up.sort();
@@ -209,6 +219,8 @@ pub fn audit_with_progress(
         levels: building.levels.clone(),
         warnings,
         gave_up,
+        skipped,
+        crop_margin_m: crate::extent::margin(&options.nav.grid),
         profiles: out,
     })
 }
@@ -540,8 +552,9 @@ pub fn drawing_name(report: &AuditReport, p: usize, floor: usize) -> String {
     )
 }
 
-/// Writes `audit.json`, one SVG per profile and storey and `report.html` into `dir` (created
-/// if missing). Returns the files written.
+/// Writes `audit.json`, one SVG per profile and storey (but the skipped ones, drawn over the
+/// extent audited) and `report.html` into `dir` (created if missing). Returns the files
+/// written.
 pub fn write_report(
     report: &AuditReport,
     building: &Building,
@@ -559,7 +572,11 @@ pub fn write_report(
     let mut drawings = Vec::new();
     for (pi, pa) in report.profiles.iter().enumerate() {
         for (fi, floor) in building.floors.iter().enumerate() {
-            let text = svg::audit_svg(building, fi, floor, pa);
+            if crate::extent::nothing_to_navigate(floor).is_some() {
+                continue;
+            }
+            let floor = crate::extent::cropped(floor, report.crop_margin_m);
+            let text = svg::audit_svg(building, fi, &floor, pa);
             let p = dir.join(drawing_name(report, pi, fi));
             write(&p, text.as_bytes())?;
             files.push(p);
@@ -599,6 +616,14 @@ figure{margin:1em 0}svg{max-width:100%;height:auto;border:1px solid #ddd}\n\
                 .join(", ")
         )
     );
+    for k in &report.skipped {
+        let _ = writeln!(
+            h,
+            "<p class=\"skipped\">Storey {} is skipped: {}.</p>",
+            attr(&k.floor),
+            attr(&k.reason)
+        );
+    }
     if !report.warnings.is_empty() {
         h.push_str("<ul class=\"warnings\">\n");
         for w in &report.warnings {

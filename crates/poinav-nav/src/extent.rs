@@ -2,11 +2,33 @@
 //! doors and walls), a copy of the storey cropped to it (obstacles further out cut off at a
 //! margin, so a site model, terrain or a neighbouring building does not widen every map), and
 //! whether a storey has anything to navigate at all (a space or a door: a roof with its
-//! parapet walls has not).
+//! parapet walls has not). [`crate::Navigator`] rasterises every storey through [`for_grid`],
+//! so routes, the audit and the Nav2 bundle all see the same cropped storeys.
+
+use std::borrow::Cow;
 
 use glam::DVec2;
+use serde::Serialize;
 
 use crate::floor::{Floor, FloorObstacle};
+use crate::grid::GridOptions;
+
+/// A storey with nothing to navigate ([`nothing_to_navigate`]): rasterised empty, no Nav2
+/// folder, no audit drawing.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SkippedStorey {
+    /// Storey name.
+    pub floor: String,
+    /// Why ([`nothing_to_navigate`]).
+    pub reason: String,
+}
+
+impl SkippedStorey {
+    /// The line the CLI prints: `skipped storey Roof: no spaces or doors (1 other element)`.
+    pub fn line(&self) -> String {
+        format!("skipped storey {}: {}", self.floor, self.reason)
+    }
+}
 
 /// Whether an obstacle of this IFC class is a wall (walls bound what a robot can reach).
 pub fn is_wall(class: &str) -> bool {
@@ -53,17 +75,54 @@ pub fn nothing_to_navigate(floor: &Floor) -> Option<String> {
     })
 }
 
+/// How far beyond its own extent a storey is kept for `options`: the entrance apron plus
+/// [`GridOptions::crop_margin_m`].
+pub fn margin(options: &GridOptions) -> f64 {
+    options.entrance_apron_m.max(0.0) + options.crop_margin_m.max(0.0)
+}
+
+/// What is rasterised of `floor` with `options`: [`cropped`] at [`margin`], borrowed when
+/// cropping leaves it as it is (every obstacle inside), so a building without a site around it
+/// is not copied.
+pub fn for_grid<'a>(floor: &'a Floor, options: &GridOptions) -> Cow<'a, Floor> {
+    crop(floor, margin(options))
+}
+
 /// `floor` cropped to its own extent grown by `margin` metres on every side: obstacles wholly
-/// inside). A floor with nothing to navigate ([`nothing_to_navigate`]) loses every obstacle.
+/// outside dropped, those across the edge clipped to it (zones and doors are kept whole: they
+/// are the extent). A floor with nothing to navigate ([`nothing_to_navigate`]) loses every
+/// obstacle.
 pub fn cropped(floor: &Floor, margin: f64) -> Floor {
+    crop(floor, margin).into_owned()
+}
+
+fn crop(floor: &Floor, margin: f64) -> Cow<'_, Floor> {
+    let without = |obstacles: Vec<FloorObstacle>| {
+        Cow::Owned(Floor {
+            name: floor.name.clone(),
+            elevation_m: floor.elevation_m,
+            obstacles,
+            doors: floor.doors.clone(),
+            zones: floor.zones.clone(),
+        })
+    };
     let extent = own_extent(floor).filter(|_| nothing_to_navigate(floor).is_none());
     let Some((lo, hi)) = extent else {
-        return Floor {
-            obstacles: Vec::new(),
-            ..floor.clone()
+        return if floor.obstacles.is_empty() {
+            Cow::Borrowed(floor)
+        } else {
+            without(Vec::new())
         };
     };
     let (lo, hi) = (lo - DVec2::splat(margin), hi + DVec2::splat(margin));
+    let inside = |p: &DVec2| p.x >= lo.x && p.x <= hi.x && p.y >= lo.y && p.y <= hi.y;
+    if floor
+        .obstacles
+        .iter()
+        .all(|o| !o.rings.is_empty() && o.rings.iter().flatten().all(inside))
+    {
+        return Cow::Borrowed(floor);
+    }
     let obstacles = floor
         .obstacles
         .iter()
@@ -73,13 +132,16 @@ pub fn cropped(floor: &Floor, margin: f64) -> Floor {
                 .iter()
                 .filter_map(|r| clip_ring(r, lo, hi))
                 .collect();
-            (!rings.is_empty()).then(|| FloorObstacle { rings, ..o.clone() })
+            (!rings.is_empty()).then(|| FloorObstacle {
+                rings,
+                id: o.id.clone(),
+                class: o.class.clone(),
+                kind: o.kind,
+                roles: o.roles.clone(),
+            })
         })
         .collect();
-    Floor {
-        obstacles,
-        ..floor.clone()
-    }
+    without(obstacles)
 }
 
 /// `ring` clipped to the box `lo`-`hi` (Sutherland-Hodgman: a concave ring may come back with

@@ -6,6 +6,7 @@ use poinav_roles::{AccessibilityStatus, CoordinationProtocol, Role};
 use serde::{Deserialize, Serialize};
 
 use crate::polygon::PassageFrame;
+use crate::zone_index::ZoneIndex;
 
 /// What an obstacle is, for maps and sensors.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -142,6 +143,20 @@ impl Floor {
     /// beyond more of its faces (a door joins two spaces); on a tie, [`FloorDoor::frame`].
     /// The other orientation is a candidate only when it is at least the clear width wide.
     pub fn door_frame(&self, k: usize) -> Option<PassageFrame> {
+        self.door_frame_with(k, &mut None)
+    }
+
+    /// [`Floor::door_frame`] with this floor's [`ZoneIndex`] (for many doors, build it once).
+    pub fn door_frame_in(&self, k: usize, zones: &ZoneIndex) -> Option<PassageFrame> {
+        self.door_frame_with(k, &mut Some(std::borrow::Cow::Borrowed(zones)))
+    }
+
+    /// [`Floor::door_frame`], the zone index built only when the zones are looked at.
+    fn door_frame_with(
+        &self,
+        k: usize,
+        zones: &mut Option<std::borrow::Cow<'_, ZoneIndex>>,
+    ) -> Option<PassageFrame> {
         let d = self.doors.get(k)?;
         let f = d.frame()?;
         let g = f.swapped();
@@ -149,8 +164,9 @@ impl Floor {
         if w.is_finite() && w > 0.0 && 2.0 * g.half_width < w - 1e-6 {
             return Some(f);
         }
+        let zones = zones.get_or_insert_with(|| std::borrow::Cow::Owned(ZoneIndex::new(self)));
         let score = |f: &PassageFrame| {
-            let sides = crate::graph::frame_zones(self, f);
+            let sides = crate::graph::frame_zones(self, zones, f);
             let own = sides
                 .iter()
                 .flatten()

@@ -17,6 +17,7 @@ use crate::floor::Floor;
 use crate::grid::{NavGrid, NONE};
 use crate::level::Entrance;
 use crate::polygon;
+use crate::zone_index::ZoneIndex;
 
 /// What a node stands for.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -186,7 +187,8 @@ pub struct Topology {
 pub const SIDE_PROBE_M: f64 = 0.5;
 
 /// The first zone (in floor order) containing `p`, among zones within
-/// [`crate::bounds::ELEMENT_VERTICES`].
+/// [`crate::bounds::ELEMENT_VERTICES`]: a fold over every zone, for a probe or two; many
+/// probes of one floor go through its [`ZoneIndex`], which answers the same.
 pub fn zone_at(floor: &Floor, p: DVec2) -> Option<usize> {
     floor.zones.iter().position(|z| {
         // A zone past the vertex bound is unknown in the grid, and doors near it are
@@ -200,14 +202,18 @@ pub fn zone_at(floor: &Floor, p: DVec2) -> Option<usize> {
 
 /// The zones beyond the two faces of a passage frame (against and along its normal), probing
 /// up to [`SIDE_PROBE_M`] out.
-pub fn frame_zones(floor: &Floor, f: &crate::polygon::PassageFrame) -> [Option<usize>; 2] {
+pub fn frame_zones(
+    floor: &Floor,
+    zones: &ZoneIndex,
+    f: &crate::polygon::PassageFrame,
+) -> [Option<usize>; 2] {
     let step = 0.025;
     let mut sides = [None, None];
     for (s, side) in [-1.0, 1.0].into_iter().enumerate() {
         let mut k = 1;
         while sides[s].is_none() && (k as f64) * step <= SIDE_PROBE_M {
             let p = f.center + f.normal * side * (f.half_depth + k as f64 * step);
-            sides[s] = zone_at(floor, p);
+            sides[s] = zones.zone_at(floor, p);
             k += 1;
         }
     }
@@ -221,7 +227,12 @@ pub fn frame_zones(floor: &Floor, f: &crate::polygon::PassageFrame) -> [Option<u
 /// face, so only a door with no space behind it has a side outside; otherwise from geometry
 /// alone (the zones just beyond the passage's faces).
 pub fn door_zones(floor: &Floor, door: usize) -> [Option<usize>; 2] {
-    let geometric = geometric_door_zones(floor, door);
+    door_zones_in(floor, &ZoneIndex::new(floor), door)
+}
+
+/// [`door_zones`] with `floor`'s [`ZoneIndex`] (for many doors, build it once).
+pub fn door_zones_in(floor: &Floor, zones: &ZoneIndex, door: usize) -> [Option<usize>; 2] {
+    let geometric = geometric_door_zones_in(floor, zones, door);
     let d = &floor.doors[door];
     let Some(ids) = d.spaces.as_ref().filter(|s| !s.is_empty()) else {
         return geometric;
@@ -233,7 +244,7 @@ pub fn door_zones(floor: &Floor, door: usize) -> [Option<usize>; 2] {
     if own.is_empty() {
         return geometric;
     }
-    let frame = floor.door_frame(door);
+    let frame = floor.door_frame_in(door, zones);
     let probe = |side: f64| match frame {
         Some(f) => f.center + f.normal * side * (f.half_depth + 0.25),
         None => d.center,
@@ -294,8 +305,17 @@ pub fn door_zones(floor: &Floor, door: usize) -> [Option<usize>; 2] {
 
 /// The zones on the two sides of a door from geometry alone.
 pub fn geometric_door_zones(floor: &Floor, door: usize) -> [Option<usize>; 2] {
+    geometric_door_zones_in(floor, &ZoneIndex::new(floor), door)
+}
+
+/// [`geometric_door_zones`] with `floor`'s [`ZoneIndex`].
+pub fn geometric_door_zones_in(
+    floor: &Floor,
+    zones: &ZoneIndex,
+    door: usize,
+) -> [Option<usize>; 2] {
     let d = &floor.doors[door];
-    let Some(f) = floor.door_frame(door) else {
+    let Some(f) = floor.door_frame_in(door, zones) else {
         // No passage ring: the two zones nearest to the centre within the probe distance.
         let mut near: Vec<(f64, usize)> = floor
             .zones
@@ -308,7 +328,7 @@ pub fn geometric_door_zones(floor: &Floor, door: usize) -> [Option<usize>; 2] {
         near.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
         return [near.first().map(|n| n.1), near.get(1).map(|n| n.1)];
     };
-    frame_zones(floor, &f)
+    frame_zones(floor, zones, &f)
 }
 
 impl Topology {
@@ -344,14 +364,16 @@ impl Topology {
         }
         let mut edges = Vec::new();
         let mut doors = Vec::new();
+        let indexes: Vec<ZoneIndex> = building.floors.iter().map(ZoneIndex::new).collect();
         for (fi, floor) in building.floors.iter().enumerate() {
+            let zones = &indexes[fi];
             let undecided = crate::bounds::door_side_bounds(floor, bounds);
             for (k, d) in floor.doors.iter().enumerate() {
                 let gave_up = undecided[k].is_some();
                 let p = if gave_up {
                     d.frame().map_or(d.center, |f| f.center)
                 } else {
-                    floor.door_frame(k).map_or(d.center, |f| f.center)
+                    floor.door_frame_in(k, zones).map_or(d.center, |f| f.center)
                 };
                 let node = nodes.len();
                 nodes.push(Node {
@@ -368,7 +390,7 @@ impl Topology {
                 let zones = if gave_up {
                     [None, None]
                 } else {
-                    door_zones(floor, k)
+                    door_zones_in(floor, zones, k)
                 };
                 let mut linked: Vec<usize> = zones.iter().flatten().copied().collect();
                 linked.dedup();
@@ -419,7 +441,7 @@ impl Topology {
                     y: l.point.y,
                     roles: Vec::new(),
                 });
-                let zone = zone_at(floor, l.point).or_else(|| {
+                let zone = indexes[l.floor].zone_at(floor, l.point).or_else(|| {
                     floor
                         .zones
                         .iter()

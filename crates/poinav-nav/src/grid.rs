@@ -18,6 +18,7 @@ use crate::bounds::{self, GaveUp, Stage, StageBounds};
 use crate::building::{door_status, passable};
 use crate::floor::{Floor, ObstacleKind};
 use crate::polygon::{self, PassageFrame};
+use crate::zone_index::ZoneIndex;
 use crate::NavError;
 
 /// No zone or door at a cell.
@@ -78,6 +79,11 @@ pub struct GridOptions {
     pub at_ground: bool,
     /// Size bounds per element ([`StageBounds`]; the defaults are [`crate::bounds`]'s).
     pub bounds: StageBounds,
+    /// How far beyond a storey's own extent (its spaces, doors and walls) and its entrance
+    /// aprons a [`crate::Navigator`] keeps obstacles when it rasterises the storey, metres
+    /// (default 1.0; [`crate::extent::for_grid`]). [`OccupancyGrid::build`] itself draws the
+    /// floor it is given whole.
+    pub crop_margin_m: f64,
 }
 
 impl Default for GridOptions {
@@ -92,6 +98,7 @@ impl Default for GridOptions {
             entrance_apron_m: 1.0,
             at_ground: true,
             bounds: StageBounds::default(),
+            crop_margin_m: 1.0,
         }
     }
 }
@@ -255,6 +262,7 @@ pub fn entrance_aprons(
     }
     let mut out = Vec::new();
     let undecided = bounds::door_side_bounds(floor, &options.bounds);
+    let zones = ZoneIndex::new(floor);
     for (k, d) in floor.doors.iter().enumerate() {
         if undecided[k].is_some() {
             continue;
@@ -264,10 +272,10 @@ pub fn entrance_aprons(
         {
             continue;
         }
-        let Some(f) = floor.door_frame(k) else {
+        let Some(f) = floor.door_frame_in(k, &zones) else {
             continue;
         };
-        let sides: &[f64] = match crate::graph::door_zones(floor, k) {
+        let sides: &[f64] = match crate::graph::door_zones_in(floor, &zones, k) {
             // A doorway with a zone on one side leads into the undescribed, not outside.
             [None, Some(_)] | [Some(_), None]
                 if d.doorless || !(options.at_ground || d.terrain) =>
@@ -545,6 +553,7 @@ impl OccupancyGrid {
         }
 
         let mut doors = Vec::with_capacity(floor.doors.len());
+        let zones = ZoneIndex::new(floor);
         for (k, d) in floor.doors.iter().enumerate() {
             let (status, reason) = door_status(d, profile);
             let given_up = door_bound(d, &door_sides[k], &rows, limits, res);
@@ -575,7 +584,7 @@ impl OccupancyGrid {
                 continue;
             }
             let open = !options.doors_by_status || passable(status, options.pending_doors_open);
-            let frame = floor.door_frame(k);
+            let frame = floor.door_frame_in(k, &zones);
             let state = if open {
                 CellState::Free
             } else {
@@ -612,7 +621,7 @@ impl OccupancyGrid {
             }
             // Walled in: before any apron is painted, a free cell in no zone and no door is
             // one the enclosed fill made free, so enclosed by walls and doors.
-            let side = match crate::graph::door_zones(floor, k) {
+            let side = match crate::graph::door_zones_in(floor, &zones, k) {
                 [None, Some(_)] => Some(-1.0),
                 [Some(_), None] => Some(1.0),
                 _ => None,

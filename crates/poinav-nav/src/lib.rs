@@ -81,6 +81,7 @@ pub mod route_graph;
 pub mod space_name;
 pub mod speed;
 pub mod svg;
+pub mod zone_index;
 
 pub use audit::{audit, AuditOptions, AuditReport};
 pub use bounds::{GaveUp, StageBounds};

@@ -29,9 +29,9 @@
 //!
 //! Only where there is something to navigate: each storey's maps cover its own extent (its
 //! spaces, doors and walls, [`crate::extent`]) plus the entrance aprons and
-//! [`Nav2Options::crop_margin_m`], not whatever else the storey holds (a site, terrain, a
-//! roof's overhang); a storey without spaces or doors (a roof, an empty level) gets no folder
-//! and is listed in [`BundleSummary::skipped`] with why.
+//! [`crate::GridOptions::crop_margin_m`], not whatever else the storey holds (a site, terrain,
+//! a roof's overhang), as [`Navigator`] rasterises it; a storey without spaces or doors (a
+//! roof, an empty level) gets no folder and is listed in [`BundleSummary::skipped`] with why.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -62,9 +62,6 @@ pub struct Nav2Options {
     /// value): with Nav2's own default 0.25, the unknown grey 205 (p = 50 / 255 = 0.196) loads
     /// as free, so the outside of the building would become free space.
     pub free_thresh: f64,
-    /// How far beyond a storey's own extent (spaces, doors, walls) and its entrance aprons
-    /// obstacles are kept in its maps, metres (default 1.0).
-    pub crop_margin_m: f64,
 }
 
 impl Default for Nav2Options {
@@ -74,7 +71,6 @@ impl Default for Nav2Options {
             frame: "map".into(),
             neighbours: 2,
             free_thresh: 0.196,
-            crop_margin_m: 1.0,
         }
     }
 }
@@ -102,14 +98,7 @@ pub struct StoreyBundle {
     pub graph_edges: usize,
 }
 
-/// A storey with nothing to navigate: no folder written.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct SkippedStorey {
-    /// Storey name.
-    pub floor: String,
-    /// Why ([`crate::extent::nothing_to_navigate`]).
-    pub reason: String,
-}
+pub use crate::extent::SkippedStorey;
 
 /// What was written.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -175,7 +164,7 @@ fn write(files: &mut Vec<PathBuf>, path: PathBuf, bytes: &[u8]) -> Result<(), Na
 }
 
 /// Writes the bundle of `building` for `profile` into `dir` (created if missing): each storey
-/// cropped to its own extent ([`cropped_building`]), storeys with nothing to navigate skipped.
+/// cropped to its own extent, storeys with nothing to navigate skipped ([`Navigator`]).
 pub fn write_bundle(
     building: &Building,
     profile: &RobotProfile,
@@ -193,36 +182,8 @@ pub fn write_bundle_with_progress(
     dir: &Path,
     progress: crate::progress::Progress<'_>,
 ) -> Result<BundleSummary, NavError> {
-    let cropped = cropped_building(building, options);
-    let nav = Navigator::with_progress(&cropped, profile, &options.nav, progress)?;
-    // Why a storey is skipped is told from what it held before cropping.
-    let skip = skip_reasons(building);
-    write_storeys(&nav, options, dir, progress, &skip)
-}
-
-/// Per storey, why it has nothing to navigate ([`crate::extent::nothing_to_navigate`]).
-fn skip_reasons(building: &Building) -> Vec<Option<String>> {
-    building
-        .floors
-        .iter()
-        .map(crate::extent::nothing_to_navigate)
-        .collect()
-}
-
-/// `building` with each storey cropped to its own extent plus the entrance apron and
-/// [`Nav2Options::crop_margin_m`] ([`crate::extent::cropped`]); storeys with nothing to
-/// navigate keep no obstacles, so their grids cost nothing.
-pub fn cropped_building(building: &Building, options: &Nav2Options) -> Building {
-    let margin = options.nav.grid.entrance_apron_m.max(0.0) + options.crop_margin_m.max(0.0);
-    Building {
-        floors: building
-            .floors
-            .iter()
-            .map(|f| crate::extent::cropped(f, margin))
-            .collect(),
-        connections: building.connections.clone(),
-        levels: building.levels.clone(),
-    }
+    let nav = Navigator::with_progress(building, profile, &options.nav, progress)?;
+    write_navigator_bundle_with_progress(&nav, options, dir, progress)
 }
 
 /// Writes the bundle of a prepared building (storeys with nothing to navigate skipped).
@@ -241,16 +202,6 @@ pub fn write_navigator_bundle_with_progress(
     dir: &Path,
     progress: crate::progress::Progress<'_>,
 ) -> Result<BundleSummary, NavError> {
-    write_storeys(nav, options, dir, progress, &skip_reasons(nav.building))
-}
-
-fn write_storeys(
-    nav: &Navigator<'_>,
-    options: &Nav2Options,
-    dir: &Path,
-    progress: crate::progress::Progress<'_>,
-    skip: &[Option<String>],
-) -> Result<BundleSummary, NavError> {
     let mkdir = |d: &Path| {
         std::fs::create_dir_all(d).map_err(|source| NavError::Write {
             path: d.to_path_buf(),
@@ -265,7 +216,7 @@ fn write_storeys(
     let n = nav.building.floors.len();
     for (fi, floor) in nav.building.floors.iter().enumerate() {
         progress(crate::progress::Phase::Writing, fi, n);
-        if let Some(reason) = skip.get(fi).cloned().flatten() {
+        if let Some(reason) = nav.nothing_to_navigate[fi].clone() {
             skipped.push(SkippedStorey {
                 floor: floor.name.clone(),
                 reason,

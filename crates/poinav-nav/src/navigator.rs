@@ -1,6 +1,9 @@
 //! A building prepared for one robot profile: an inflated grid per storey, the topology, each
 //! door's and connection's status, whether each door can be crossed in the grid, and the
 //! speed fractions of every zone and door. Routes, the audit and the Nav2 bundle start here.
+//! Each storey is rasterised only where there is something to navigate: cropped to its own
+//! extent ([`crate::extent::for_grid`]), and a storey without spaces or doors not at all (an
+//! empty grid; [`Navigator::skipped`] says why).
 
 use poinav_roles::{AccessibilityStatus, RobotProfile};
 use serde::Serialize;
@@ -62,8 +65,11 @@ pub struct Navigator<'a> {
     pub options: NavOptions,
     /// The topology.
     pub topology: Topology,
-    /// Per storey.
+    /// Per storey (a storey with nothing to navigate gets an empty grid of unknown cells).
     pub floors: Vec<FloorNav>,
+    /// Per storey: why it has nothing to navigate ([`crate::extent::nothing_to_navigate`]),
+    /// else `None`.
+    pub nothing_to_navigate: Vec<Option<String>>,
     /// Per topology node: status and reason for the profile.
     pub status: Vec<(AccessibilityStatus, String)>,
     /// Per topology node: door nodes whether the robot's centre can cross the door in the
@@ -106,7 +112,10 @@ impl<'a> Navigator<'a> {
                 at_ground: building.at_ground(fi),
                 ..options.grid.clone()
             };
-            let grid = NavGrid::build(floor, profile, &grid_options, &options.inflation)?;
+            // Only where there is something to navigate (the storey as a whole keeps its
+            // obstacles for everything else).
+            let cropped = crate::extent::for_grid(floor, &grid_options);
+            let grid = NavGrid::build(&cropped, profile, &grid_options, &options.inflation)?;
             let zone_speed = floor
                 .zones
                 .iter()
@@ -168,17 +177,38 @@ impl<'a> Navigator<'a> {
             .iter()
             .flat_map(|f| f.grid.occupancy.gave_up.iter().cloned())
             .collect();
+        let nothing_to_navigate = building
+            .floors
+            .iter()
+            .map(crate::extent::nothing_to_navigate)
+            .collect();
         Ok(Navigator {
             building,
             profile: profile.clone(),
             options: options.clone(),
             topology,
             floors,
+            nothing_to_navigate,
             status,
             grid_passable,
             open,
             gave_up,
         })
+    }
+
+    /// The storeys with nothing to navigate, with why, in order.
+    pub fn skipped(&self) -> Vec<crate::extent::SkippedStorey> {
+        self.building
+            .floors
+            .iter()
+            .zip(&self.nothing_to_navigate)
+            .filter_map(|(f, why)| {
+                why.as_ref().map(|reason| crate::extent::SkippedStorey {
+                    floor: f.name.clone(),
+                    reason: reason.clone(),
+                })
+            })
+            .collect()
     }
 
     /// The topology as JSON with this profile's statuses (open boundaries included).

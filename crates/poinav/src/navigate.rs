@@ -406,6 +406,9 @@ pub fn audit(args: &AuditArgs) -> anyhow::Result<ExitCode> {
                 }
             }
         }
+        for k in &report.skipped {
+            outln!("  {}", k.line());
+        }
         outln!(
             "wrote {} and {} more files in {}",
             args.output.display(),
@@ -531,7 +534,7 @@ pub fn nav2(args: &Nav2Args) -> anyhow::Result<ExitCode> {
         );
     }
     for k in &summary.skipped {
-        outln!("  skipped storey {}: {}", k.floor, k.reason);
+        outln!("  {}", k.line());
     }
     Ok(ExitCode::SUCCESS)
 }

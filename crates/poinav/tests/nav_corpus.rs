@@ -5,7 +5,9 @@
 //! door with one names on its other side the space geometry finds there, if any (FZK-Haus's
 //! front door: the hall and the outside). Doors of models without spaces join no
 //! zone: they get a free apron on both sides and are checked the same way, except a door
-//! that leads onto a stair, which must name the stair as what is in the way.
+//! that leads onto a stair, which must name the stair as what is in the way. The zone index
+//! answers as the fold over every zone at every door side probe, landing and a lattice of
+//! points on every storey.
 
 mod common;
 
@@ -20,12 +22,14 @@ fn full_access_doors_are_open_and_blocked_doors_closed_in_every_corpus_grid() {
     let mut problems = Vec::new();
     let mut behind_stairs = Vec::new();
     let (mut doorways_open, mut doorways_closed) = (0, Vec::new());
+    let mut zone_probes = Vec::new();
     for file in common::corpus() {
         let name = file.file_stem().unwrap().to_string_lossy().into_owned();
         let model = Model::open(&file).unwrap();
         let c = classify(&model, &RuleSet::defaults(), &profile);
         let building =
             poinav_bridge::building(&model, &c, &poinav_bridge::Stages::of(&model)).building;
+        zone_probes.push(same_zones_as_the_fold(&building));
         if building.floors.iter().all(|f| f.doors.is_empty()) {
             continue;
         }
@@ -157,6 +161,12 @@ fn full_access_doors_are_open_and_blocked_doors_closed_in_every_corpus_grid() {
         problems.join("\n")
     );
     assert!(report.len() >= 10, "{report:?}");
+    // The zone index answered as the fold over every zone at every probe: many probes, and
+    // many of them in a zone (165,098 and 140,303 on 2026-11-27).
+    let (probes, in_zones) = zone_probes
+        .iter()
+        .fold((0, 0), |(a, b), (c, d)| (a + c, b + d));
+    assert!(probes >= 150_000 && in_zones >= 120_000, "{zone_probes:?}");
     // Doorways: nested-mapped-item's two and office-a's on Level 2 are open; office-a's lift
     // doorway on Level 1 (and its three copies in the merged file) is closed by the lift's
     // doors, an IfcFlowTerminal, and says so.
@@ -202,4 +212,55 @@ fn full_access_doors_are_open_and_blocked_doors_closed_in_every_corpus_grid() {
         report.join("\n")
     );
     println!("{}", report.join("\n"));
+}
+
+/// Compares [`ZoneIndex`] with the fold over every zone ([`poinav_nav::graph::zone_at`]) on
+/// every storey of `building`: along every door's side searches (both orientations of its
+/// passage, as `Floor::door_frame` and the graph probe them), at every landing and on a
+/// lattice over the storey's zones. Returns the points probed and how many were in a zone.
+fn same_zones_as_the_fold(building: &poinav_nav::Building) -> (usize, usize) {
+    use glam::DVec2;
+    use poinav_nav::zone_index::ZoneIndex;
+    let (mut probes, mut hits) = (0, 0);
+    for (fi, floor) in building.floors.iter().enumerate() {
+        let index = ZoneIndex::new(floor);
+        let mut points: Vec<DVec2> = Vec::new();
+        for d in &floor.doors {
+            let Some(f) = d.frame() else { continue };
+            for f in [f, f.swapped()] {
+                for k in 1..=20 {
+                    for side in [-1.0, 1.0] {
+                        points.push(f.center + f.normal * side * (f.half_depth + k as f64 * 0.025));
+                    }
+                }
+            }
+        }
+        for c in &building.connections {
+            points.extend(c.landings.iter().filter(|l| l.floor == fi).map(|l| l.point));
+        }
+        let zone_points = floor.zones.iter().flat_map(|z| z.ring.iter());
+        if let Some((lo, hi)) = zone_points.fold(None, |acc: Option<(DVec2, DVec2)>, p| {
+            Some(acc.map_or((*p, *p), |(lo, hi)| (lo.min(*p), hi.max(*p))))
+        }) {
+            let step = ((hi - lo).x * (hi - lo).y / 4000.0).sqrt().max(0.05);
+            let (nx, ny) = (((hi - lo).x / step) as usize, ((hi - lo).y / step) as usize);
+            for i in 0..=nx {
+                for j in 0..=ny {
+                    points.push(lo + DVec2::new(i as f64, j as f64) * step);
+                }
+            }
+        }
+        for p in points {
+            let expected = poinav_nav::graph::zone_at(floor, p);
+            assert_eq!(
+                index.zone_at(floor, p),
+                expected,
+                "storey {} at {p:?}",
+                floor.name
+            );
+            probes += 1;
+            hits += usize::from(expected.is_some());
+        }
+    }
+    (probes, hits)
 }

@@ -1,7 +1,8 @@
 //! `poinav route`, `poinav audit` and `poinav export nav2` on the paper's test building and on
 //! office-a.ifc: routes through the right doors, a narrowed door makes its room unreachable
 //! with the door named, and the Nav2 bundle follows nav2_map_server's conventions; a hillside
-//! house's upper door onto the terrain is an entrance the audit names.
+//! house's upper door onto the terrain is an entrance the audit names; storeys with nothing to
+//! navigate (office-a's roof, the railway's parts) are skipped with a line.
 
 mod common;
 
@@ -398,34 +399,19 @@ fn grid_options_change_the_nav2_maps_and_bad_values_are_refused() {
 }
 
 #[test]
-fn a_model_without_a_building_is_audited_per_railway_part_at_a_coarser_grid() {
+fn a_model_without_a_building_skips_every_railway_part_in_the_audit() {
     // The railway model: IfcRailway, alignments and track elements along them, no building:
-    // one plan per railway part. Kilometres of track do not fit a 5 cm grid: the audit says
-    // which part and what to do (exit 2, nothing written); at 1 m it runs, with nothing to
-    // reach (no spaces, no doors).
+    // one plan per railway part. Neither part holds a space or a door, so the audit skips
+    // both with a line each (the kilometres of track are not rasterised: at 5 cm they would be
+    // more than the 400 M-cell bound) and draws neither.
     let dir = tempfile::tempdir().unwrap();
     let file = common::shared().join("ifc/railway-track-ifc4x3.ifc");
     let out = dir.path().join("report.html");
-    let (code, _, err) = run(&[
-        OsStr::new("audit"),
-        file.as_os_str(),
-        OsStr::new("-o"),
-        out.as_os_str(),
-    ]);
-    assert_eq!(code, 2, "{err}");
-    assert!(
-        err.contains("error: storey Binario di corsa: a ")
-            && err.contains(" grid is more than 400000000 cells: raise the resolution"),
-        "{err}"
-    );
-    assert!(!out.exists());
     let (code, stdout, err) = run(&[
         OsStr::new("audit"),
         file.as_os_str(),
         OsStr::new("-o"),
         out.as_os_str(),
-        OsStr::new("--resolution"),
-        OsStr::new("1.0"),
     ]);
     assert_eq!(code, 0, "{err}");
     assert!(
@@ -433,7 +419,59 @@ fn a_model_without_a_building_is_audited_per_railway_part_at_a_coarser_grid() {
             && stdout.contains("spaces 0 reachable, 0 not"),
         "{stdout}"
     );
-    assert!(out.exists());
+    let skipped: Vec<&str> = stdout
+        .lines()
+        .filter(|l| l.starts_with("  skipped storey "))
+        .collect();
+    assert_eq!(
+        skipped,
+        [
+            "  skipped storey Binario di corsa: no spaces or doors (9225 other elements)",
+            "  skipped storey Binario di corsa: no spaces or doors (712 other elements)",
+        ],
+        "{stdout}"
+    );
+    assert!(stdout.contains("wrote "), "{stdout}");
+    let mut files: Vec<String> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    files.sort();
+    assert_eq!(files, ["audit.json", "report.html"]);
+}
+
+#[test]
+fn the_office_a_audit_skips_the_roof_with_a_line_and_draws_the_other_storeys() {
+    // office-a's Roof storey holds only its 10 parapet walls: skipped, as in the Nav2 bundle.
+    let dir = tempfile::tempdir().unwrap();
+    let file = common::shared().join("ifc/office-a.ifc");
+    let out = dir.path().join("report.html");
+    let (code, stdout, err) = run(&[
+        OsStr::new("-q"),
+        OsStr::new("audit"),
+        file.as_os_str(),
+        OsStr::new("-o"),
+        out.as_os_str(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        stdout.starts_with("paper-robot: 104 door passages (102 doors, 2 doorways): 99 full, 5 restricted, 0 blocked, 0 pending; spaces 99 reachable, 0 not\n  skipped storey Roof: no spaces or doors (10 walls)\nwrote "),
+        "{stdout}"
+    );
+    assert!(dir.path().join("paper-robot-01-level-2.svg").exists());
+    assert!(!dir.path().join("paper-robot-02-roof.svg").exists());
+    let json: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.path().join("audit.json")).unwrap()).unwrap();
+    assert_eq!(
+        json["skipped"],
+        serde_json::json!([{"floor": "Roof", "reason": "no spaces or doors (10 walls)"}])
+    );
+    assert_eq!(json["crop_margin_m"], 2.0);
+    let html = std::fs::read_to_string(&out).unwrap();
+    assert!(html.contains(
+        "<p class=\"skipped\">Storey Roof is skipped: no spaces or doors (10 walls).</p>"
+    ));
+    assert_eq!(html.matches("<figure>").count(), 2);
 }
 
 #[test]

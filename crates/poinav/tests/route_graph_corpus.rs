@@ -396,10 +396,9 @@ fn check_bundle(
     profile: &RobotProfile,
     dir: &Path,
 ) -> (BundleSummary, Tally, Graph) {
-    // As `write_bundle` does: each storey cropped to its extent.
+    // As `write_bundle` does (the navigator crops each storey to its extent).
     let options = Nav2Options::default();
-    let cropped = poinav_nav::nav2::cropped_building(building, &options);
-    let nav = Navigator::new(&cropped, profile, &options.nav).unwrap();
+    let nav = Navigator::new(building, profile, &options.nav).unwrap();
     let summary = write_navigator_bundle(&nav, &options, dir).unwrap();
     let mut tally = Tally::default();
     let whole = load_graph(&dir.join("route_graph.geojson"));
@@ -413,7 +412,7 @@ fn check_bundle(
             assert_eq!(p["frame"], "map");
             assert_eq!(p["metadata"]["storey"], st.floor.as_str());
         }
-        check_edges(&g, &cropped, &nav, &mut tally);
+        check_edges(&g, building, &nav, &mut tally);
     }
     // The building graph: every storey's nodes, each in its storey's frame.
     assert_eq!(whole.nodes.len(), total_nodes);
@@ -433,7 +432,7 @@ fn check_bundle(
         }
     }
     let mut building_tally = Tally::default();
-    check_edges(&whole, &cropped, &nav, &mut building_tally);
+    check_edges(&whole, building, &nav, &mut building_tally);
     assert_eq!(building_tally.edges, tally.edges);
     assert_eq!(
         building_tally.storey_links,
