@@ -34,7 +34,17 @@ build=(--release)
 out=release
 case "${POINAV_FUZZ_BUILD:-quick}" in
     quick) export CARGO_PROFILE_RELEASE_OPT_LEVEL=1 CARGO_PROFILE_RELEASE_CODEGEN_UNITS=16 \
-        CARGO_PROFILE_RELEASE_DEBUG=line-tables-only ;;
+        CARGO_PROFILE_RELEASE_DEBUG=line-tables-only
+        # Our crates and the small dependencies their parsers lean on optimised, the rest
+        # not: the build's time goes to manifold-rust, i_overlay, toml and regex, a short
+        # run's to our parsers.
+        build+=(--config 'profile.release.package."*".opt-level=0')
+        for c in poinav-io poinav-ifc poinav-geom poinav-roles poinav-poi poinav-author \
+            poinav-nav poinav-sim memchr hashbrown foldhash rustc-hash smallvec rayon \
+            rayon-core crossbeam-deque crossbeam-epoch crossbeam-utils glam serde_json ryu \
+            itoa libfuzzer-sys; do
+            build+=(--config "profile.release.package.$c.opt-level=1")
+        done ;;
     full) flags+=(-Ccodegen-units=1) ;;
     dev) build=(); out=debug; flags+=(-Cdebug-assertions) ;;
     *) echo "fuzz.sh: POINAV_FUZZ_BUILD is quick, full or dev" >&2; exit 2 ;;
