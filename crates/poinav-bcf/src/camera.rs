@@ -107,16 +107,8 @@ pub fn door_eye(floor: &Floor, center: DVec2, normal: DVec2) -> DVec2 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use poinav_nav::polygon::rect;
     use poinav_nav::FloorZone;
-
-    fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Vec<DVec2> {
-        vec![
-            DVec2::new(x0, y0),
-            DVec2::new(x1, y0),
-            DVec2::new(x1, y1),
-            DVec2::new(x0, y1),
-        ]
-    }
 
     fn zone(id: &str, ring: Vec<DVec2>) -> FloorZone {
         FloorZone {

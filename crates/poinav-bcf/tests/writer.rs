@@ -7,20 +7,12 @@ use std::io::{Cursor, Read};
 
 use glam::DVec2;
 use poinav_bcf::{bcf_bytes, guid, BcfOptions, BcfVersion, IssueKind};
+use poinav_nav::polygon::rect;
 use poinav_nav::{
     audit, AuditOptions, AuditReport, Building, Floor, FloorDoor, FloorObstacle, FloorZone,
     NavOptions, ObstacleKind,
 };
 use poinav_poi::{AccessibilityStatus, RobotProfile};
-
-fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Vec<DVec2> {
-    vec![
-        DVec2::new(x0, y0),
-        DVec2::new(x1, y0),
-        DVec2::new(x1, y1),
-        DVec2::new(x0, y1),
-    ]
-}
 
 /// A 22-character GlobalId-like id.
 fn gid(tag: &str) -> String {

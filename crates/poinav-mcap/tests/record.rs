@@ -7,17 +7,9 @@ use std::path::Path;
 
 use glam::DVec2;
 use poinav_mcap::{storey_map, write_recording, McapError, Scene, START_NS};
+use poinav_nav::polygon::rect;
 use poinav_nav::{Floor, FloorDoor, FloorObstacle, FloorZone, Nav2Options, ObstacleKind};
 use poinav_roles::{AccessibilityStatus, RobotProfile, Role};
-
-fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Vec<DVec2> {
-    vec![
-        DVec2::new(x0, y0),
-        DVec2::new(x1, y0),
-        DVec2::new(x1, y1),
-        DVec2::new(x0, y1),
-    ]
-}
 
 /// A 4 x 3 m room with 0.1 m walls and a 1 m door in the south wall.
 fn floor() -> Floor {

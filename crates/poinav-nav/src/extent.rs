@@ -202,15 +202,7 @@ fn clip_ring(ring: &[DVec2], lo: DVec2, hi: DVec2) -> Option<Vec<DVec2>> {
 mod tests {
     use super::*;
     use crate::floor::{FloorZone, ObstacleKind};
-
-    fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Vec<DVec2> {
-        vec![
-            DVec2::new(x0, y0),
-            DVec2::new(x1, y0),
-            DVec2::new(x1, y1),
-            DVec2::new(x0, y1),
-        ]
-    }
+    use crate::polygon::rect;
 
     fn obstacle(class: &str, ring: Vec<DVec2>) -> FloorObstacle {
         FloorObstacle {

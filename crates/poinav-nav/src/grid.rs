@@ -1098,15 +1098,7 @@ impl Scratch {
 mod tests {
     use super::*;
     use crate::floor::FloorObstacle;
-
-    fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Vec<DVec2> {
-        vec![
-            DVec2::new(x0, y0),
-            DVec2::new(x1, y0),
-            DVec2::new(x1, y1),
-            DVec2::new(x0, y1),
-        ]
-    }
+    use crate::polygon::rect;
 
     #[test]
     fn distance_transform_matches_brute_force() {

@@ -4,20 +4,12 @@
 //! width deserves.
 
 use glam::DVec2;
+use poinav_nav::polygon::rect;
 use poinav_nav::{Floor, FloorDoor, FloorObstacle, FloorZone, ObstacleKind};
 use poinav_poi::{AccessibilityStatus, RobotProfile, Role};
 use poinav_sim::controller::ControllerSpec;
 use poinav_sim::poi_db::Start;
 use poinav_sim::{EventKind, RobotSetup, Sim, SimOptions};
-
-fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Vec<DVec2> {
-    vec![
-        DVec2::new(x0, y0),
-        DVec2::new(x1, y0),
-        DVec2::new(x1, y1),
-        DVec2::new(x0, y1),
-    ]
-}
 
 /// A wall along y = 0..t with a door of width `w` centred on x = 0, a room below, a hall above.
 fn floor(w: f64, t: f64) -> Floor {

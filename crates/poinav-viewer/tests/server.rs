@@ -8,6 +8,7 @@ use std::time::{Duration, Instant};
 
 use futures_util::{SinkExt, StreamExt};
 use glam::DVec2;
+use poinav_nav::polygon::rect;
 use poinav_nav::{Floor, FloorObstacle, FloorZone, ObstacleKind};
 use poinav_roles::{RobotProfile, Role};
 use poinav_sim::SimOptions;
@@ -21,15 +22,6 @@ use tokio_tungstenite::tungstenite::{Error as WsError, Message};
 use tokio_tungstenite::{connect_async, MaybeTlsStream, WebSocketStream};
 
 type Ws = WebSocketStream<MaybeTlsStream<TcpStream>>;
-
-fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Vec<DVec2> {
-    vec![
-        DVec2::new(x0, y0),
-        DVec2::new(x1, y0),
-        DVec2::new(x1, y1),
-        DVec2::new(x0, y1),
-    ]
-}
 
 /// A 10 x 6 m room inside four 0.2 m walls.
 fn room() -> Floor {

@@ -9,17 +9,9 @@ use glam::DVec2;
 use poinav_author::DemoBuilding;
 use poinav_nav::building::width_status;
 use poinav_nav::building::{ConnectionKind, Landing, VerticalConnection};
+pub use poinav_nav::polygon::rect;
 use poinav_nav::{Building, Floor, FloorDoor, FloorObstacle, FloorZone, ObstacleKind};
 use poinav_poi::{AccessibilityStatus, CoordinationProtocol, RobotProfile, Role};
-
-pub fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Vec<DVec2> {
-    vec![
-        DVec2::new(x0, y0),
-        DVec2::new(x1, y0),
-        DVec2::new(x1, y1),
-        DVec2::new(x0, y1),
-    ]
-}
 
 pub fn wall(id: &str, rings: Vec<Vec<DVec2>>) -> FloorObstacle {
     FloorObstacle {
