@@ -32,5 +32,5 @@ pub use building::{building, Bridged, Stages};
 pub use dropped::{Dropped, DroppedKind};
 pub use error::BridgeError;
 pub use ifc_floor::{pick, StoreyKey};
-pub use prepare::{prepare, Prepared, STAMP};
+pub use prepare::{prepare, prepare_with_meshes, Prepared, STAMP};
 pub use write_back::{apply_findings, write_back};

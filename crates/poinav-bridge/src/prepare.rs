@@ -4,6 +4,7 @@
 //! its layout, [`crate::demo_floor`]). `poinav simulate` and `poinav serve --scenario` both
 //! run on what this prepared.
 
+use poinav_geom::ModelMeshes;
 use poinav_ifc::Model;
 use poinav_nav::{Building, Floor};
 use poinav_poi::{classify, Classification, RuleSet};
@@ -46,6 +47,24 @@ impl Prepared {
 
 /// Prepares the building of `scenario` for `variant`.
 pub fn prepare(scenario: &Scenario, variant: Option<&str>) -> Result<Prepared, BridgeError> {
+    prepare_keeping(scenario, variant, false).map(|(p, _)| p)
+}
+
+/// Like [`prepare`], and hands back the element meshes the building was made from (none for
+/// the test building, whose floor comes from its layout), for a caller that shows them too
+/// (`poinav serve --scenario`) and would otherwise mesh the model a second time.
+pub fn prepare_with_meshes(
+    scenario: &Scenario,
+    variant: Option<&str>,
+) -> Result<(Prepared, Option<ModelMeshes>), BridgeError> {
+    prepare_keeping(scenario, variant, true)
+}
+
+fn prepare_keeping(
+    scenario: &Scenario,
+    variant: Option<&str>,
+    keep_meshes: bool,
+) -> Result<(Prepared, Option<ModelMeshes>), BridgeError> {
     let v = scenario.variant(variant)?;
     let b = &scenario.building;
     let mut bytes = match (&b.demo, &b.ifc) {
@@ -94,7 +113,7 @@ pub fn prepare(scenario: &Scenario, variant: Option<&str>) -> Result<Prepared, B
         Some(r) => RuleSet::with_user_file(&scenario.resolve(r))?,
     };
     let classification = classify(&model, &rules, &profile);
-    let (building, storeys, dropped) = match &b.demo {
+    let (building, storeys, dropped, meshes) = match &b.demo {
         Some(demo) => {
             let floor = demo_floor(&demo_spec(demo), &model, &classification)?;
             let key = StoreyKey {
@@ -103,11 +122,13 @@ pub fn prepare(scenario: &Scenario, variant: Option<&str>) -> Result<Prepared, B
                 label: floor.name.clone(),
                 has_doors: !floor.doors.is_empty(),
             };
-            (Building::single(floor), vec![key], Vec::new())
+            (Building::single(floor), vec![key], Vec::new(), None)
         }
         None => {
-            let made = building(&model, &classification, &Stages::of(&model));
-            (made.building, made.storeys, made.dropped)
+            let stages = Stages::of(&model);
+            let made = building(&model, &classification, &stages);
+            let meshes = keep_meshes.then_some(stages.meshes);
+            (made.building, made.storeys, made.dropped, meshes)
         }
     };
     // The test building has one storey, whatever the scenario names.
@@ -115,7 +136,7 @@ pub fn prepare(scenario: &Scenario, variant: Option<&str>) -> Result<Prepared, B
         Some(_) => 0,
         None => pick(&storeys, b.storey.as_deref())?,
     };
-    Ok(Prepared {
+    let prepared = Prepared {
         model,
         classification,
         building,
@@ -123,7 +144,8 @@ pub fn prepare(scenario: &Scenario, variant: Option<&str>) -> Result<Prepared, B
         current,
         dropped,
         notes,
-    })
+    };
+    Ok((prepared, meshes))
 }
 
 #[cfg(test)]

@@ -235,7 +235,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         }
         (None, Some(s)) => {
             // The floors `poinav simulate` runs the scenario on, not another recipe's.
-            let p = poinav_bridge::prepare(s, None)?;
+            let (p, meshes) = poinav_bridge::prepare_with_meshes(s, None)?;
             let current = match args.storey.as_deref() {
                 Some(name) => poinav_bridge::pick(&p.storeys, Some(name))?,
                 None => p.current,
@@ -244,7 +244,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
             (
                 p.model,
                 p.classification,
-                (p.building, p.storeys, current, None),
+                (p.building, p.storeys, current, meshes),
                 title,
             )
         }
