@@ -16,7 +16,7 @@ use serde::Serialize;
 
 use crate::building::Building;
 use crate::navigator::{NavOptions, Navigator};
-use crate::route::{Blocking, Place, Target};
+use crate::route::{Blocking, NoPlace, Place, Target};
 use crate::svg;
 use crate::NavError;
 
@@ -308,7 +308,9 @@ pub fn audit_profile(nav: &Navigator<'_>, start: Option<&str>) -> Result<Profile
             (entrances, labels)
         }
         Some(s) => {
-            let place: Place = s.parse().map_err(NavError::Invalid)?;
+            let place: Place = s
+                .parse()
+                .map_err(|e: NoPlace| NavError::Invalid(e.to_string()))?;
             let Target::Zone(name) = &place.target else {
                 return Err(NavError::Invalid(format!(
                     "the audit's start must be a space, not a point: `{s}`"

@@ -94,6 +94,6 @@ pub use level::{Entrance, FloorLevel, LevelSource};
 pub use nav2::{write_bundle, write_bundle_with_progress, Nav2Options};
 pub use navigator::{NavOptions, Navigator};
 pub use progress::{Phase, Progress};
-pub use route::{Place, Route, Unreachable};
+pub use route::{NoPlace, Place, Route, Unreachable};
 pub use space_name::{Ambiguous, SpaceRef};
 pub use speed::{RoleSpeeds, SpeedError};

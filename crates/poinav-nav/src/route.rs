@@ -61,18 +61,23 @@ impl Place {
     }
 }
 
+/// A place's text names nothing (empty, or only `@Storey`).
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("`{0}` names no place")]
+pub struct NoPlace(pub String);
+
 impl FromStr for Place {
-    type Err = String;
+    type Err = NoPlace;
 
     /// `Room 1`, `Room 1@Level 2`, `3.5,2.0`, `3.5,2.0@Level 2`, `outside` or
     /// `outside@Level 1`.
-    fn from_str(s: &str) -> Result<Place, String> {
+    fn from_str(s: &str) -> Result<Place, NoPlace> {
         let (what, floor) = match s.rsplit_once('@') {
             Some((w, f)) => (w.trim(), Some(f.trim().to_string())),
             None => (s.trim(), None),
         };
         if what.is_empty() {
-            return Err(format!("`{s}` names no place"));
+            return Err(NoPlace(s.to_string()));
         }
         let coords: Vec<Option<f64>> = what.split(',').map(|p| p.trim().parse().ok()).collect();
         let target = match coords.as_slice() {

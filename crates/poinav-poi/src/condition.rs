@@ -45,16 +45,42 @@ pub struct Condition {
     text: String,
 }
 
+/// Why a condition's text could not be read.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum ConditionError {
+    /// A side of the comparison is empty.
+    #[error("missing operand")]
+    MissingOperand,
+    /// `profile.<name>` names no variable of a robot profile.
+    #[error("unknown profile variable `{name}` (known: {})", RobotProfile::VARIABLES.join(", "))]
+    UnknownProfileVariable {
+        /// The name after `profile.`.
+        name: String,
+    },
+    /// A side is neither a number, a measure nor a profile variable.
+    #[error("unknown measure `{name}` (known: {})", MEASURES.join(", "))]
+    UnknownMeasure {
+        /// The text of that side.
+        name: String,
+    },
+    /// No comparison operator in the text.
+    #[error("`{text}` is not a comparison (use <, <=, >, >=, ==, !=)")]
+    NotAComparison {
+        /// The condition's text.
+        text: String,
+    },
+}
+
 impl fmt::Display for Condition {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(&self.text)
     }
 }
 
-fn operand(s: &str) -> Result<Operand, String> {
+fn operand(s: &str) -> Result<Operand, ConditionError> {
     let s = s.trim();
     if s.is_empty() {
-        return Err("missing operand".into());
+        return Err(ConditionError::MissingOperand);
     }
     if let Ok(n) = s.parse::<f64>() {
         return Ok(Operand::Number(n));
@@ -63,23 +89,21 @@ fn operand(s: &str) -> Result<Operand, String> {
         if RobotProfile::VARIABLES.contains(&var) {
             return Ok(Operand::Profile(var.to_string()));
         }
-        return Err(format!(
-            "unknown profile variable `{var}` (known: {})",
-            RobotProfile::VARIABLES.join(", ")
-        ));
+        return Err(ConditionError::UnknownProfileVariable {
+            name: var.to_string(),
+        });
     }
     if MEASURES.contains(&s) {
         return Ok(Operand::Measure(s.to_string()));
     }
-    Err(format!(
-        "unknown measure `{s}` (known: {})",
-        MEASURES.join(", ")
-    ))
+    Err(ConditionError::UnknownMeasure {
+        name: s.to_string(),
+    })
 }
 
 impl Condition {
     /// Parses `lhs op rhs`.
-    pub fn parse(text: &str) -> Result<Condition, String> {
+    pub fn parse(text: &str) -> Result<Condition, ConditionError> {
         for (tok, op) in [
             ("<=", Op::Le),
             (">=", Op::Ge),
@@ -97,9 +121,9 @@ impl Condition {
                 });
             }
         }
-        Err(format!(
-            "`{text}` is not a comparison (use <, <=, >, >=, ==, !=)"
-        ))
+        Err(ConditionError::NotAComparison {
+            text: text.trim().to_string(),
+        })
     }
 
     fn value(o: &Operand, facts: &Facts, profile: &RobotProfile) -> Option<f64> {
@@ -144,12 +168,31 @@ mod tests {
         f.clear_width_m = Some(0.90);
         assert!(!c.holds(&f, &p));
         assert!(Condition::parse("door_count >= 2").is_ok());
+        assert_eq!(
+            Condition::parse("doors >= 2").unwrap_err(),
+            ConditionError::UnknownMeasure {
+                name: "doors".into()
+            }
+        );
         assert!(Condition::parse("doors >= 2")
             .unwrap_err()
-            .contains("unknown measure"));
-        assert!(Condition::parse("profile.wings > 1")
-            .unwrap_err()
-            .contains("unknown profile variable"));
-        assert!(Condition::parse("area_m2").is_err());
+            .to_string()
+            .starts_with("unknown measure `doors` (known: "));
+        assert_eq!(
+            Condition::parse("profile.wings > 1").unwrap_err(),
+            ConditionError::UnknownProfileVariable {
+                name: "wings".into()
+            }
+        );
+        assert_eq!(
+            Condition::parse(" area_m2 ").unwrap_err(),
+            ConditionError::NotAComparison {
+                text: "area_m2".into()
+            }
+        );
+        assert_eq!(
+            Condition::parse("< 2").unwrap_err(),
+            ConditionError::MissingOperand
+        );
     }
 }

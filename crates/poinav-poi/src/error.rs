@@ -19,6 +19,15 @@ pub enum PoiError {
         rule: String,
         message: String,
     },
+    /// A rule's condition (`when`, `when_any`, a conditional role's `when`) cannot be read.
+    #[error("{file}: rule `{rule}`: condition `{condition}`")]
+    Condition {
+        file: String,
+        rule: String,
+        condition: String,
+        #[source]
+        source: crate::condition::ConditionError,
+    },
     /// A robot profile could not be read.
     #[error(transparent)]
     Profile(#[from] poinav_roles::ProfileError),

@@ -26,7 +26,7 @@ pub mod runtime;
 mod write;
 
 pub use classify::{classify, Classification, Classified};
-pub use condition::{Condition, Op, Operand};
+pub use condition::{Condition, ConditionError, Op, Operand};
 pub use error::PoiError;
 pub use facts::{FactContext, FactValue, Facts, MEASURES};
 pub use poinav_ifc::timestamp::{iso8601_utc, now_or_source_date_epoch};

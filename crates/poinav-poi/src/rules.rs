@@ -343,6 +343,12 @@ fn compile(r: RawRule, origin: &str) -> Result<Rule, PoiError> {
         rule: r.id.clone(),
         message,
     };
+    let cond_err = |text: &str, source| PoiError::Condition {
+        file: origin.into(),
+        rule: r.id.clone(),
+        condition: text.trim().to_string(),
+        source,
+    };
     if r.classes.is_empty() {
         return Err(err("`classes` must name at least one IFC class".into()));
     }
@@ -368,7 +374,7 @@ fn compile(r: RawRule, origin: &str) -> Result<Rule, PoiError> {
         .collect::<Result<_, _>>()?;
     let conds = |list: &[String]| {
         list.iter()
-            .map(|c| Condition::parse(c).map_err(&err))
+            .map(|c| Condition::parse(c).map_err(|e| cond_err(c, e)))
             .collect::<Result<Vec<_>, _>>()
     };
     let mut properties = Vec::new();
@@ -405,7 +411,7 @@ fn compile(r: RawRule, origin: &str) -> Result<Rule, PoiError> {
         .map(|c| {
             Ok(ConditionalRole {
                 role: c.role,
-                when: Condition::parse(&c.when).map_err(&err)?,
+                when: Condition::parse(&c.when).map_err(|e| cond_err(&c.when, e))?,
             })
         })
         .collect::<Result<Vec<_>, PoiError>>()?;

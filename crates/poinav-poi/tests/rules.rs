@@ -427,10 +427,19 @@ fn user_rules_extend_or_replace_and_later_rules_win_ties() {
         "{err}"
     );
     std::fs::write(&bad, "version = 1\n[[rule]]\nid = \"y\"\nclasses = [\"IfcWall\"]\nwhen = [\"width > 3\"]\nskip = true\n").unwrap();
-    assert!(RuleSet::with_user_file(&bad)
-        .unwrap_err()
-        .to_string()
-        .contains("unknown measure `width`"));
+    let err = RuleSet::with_user_file(&bad).unwrap_err();
+    assert!(
+        err.to_string()
+            .ends_with("bad.toml: rule `y`: condition `width > 3`"),
+        "{err}"
+    );
+    let source = std::error::Error::source(&err).expect("the condition's error as source");
+    assert!(
+        source
+            .to_string()
+            .starts_with("unknown measure `width` (known: "),
+        "{source}"
+    );
 }
 
 #[test]

@@ -4,7 +4,9 @@
 
 use std::path::PathBuf;
 
-use poinav_nav::{AuditOptions, FurnitureMode, GridOptions, NavError, NavGrid, NavOptions, Place};
+use poinav_nav::{
+    AuditOptions, FurnitureMode, GridOptions, NavError, NavGrid, NavOptions, NoPlace, Place,
+};
 use poinav_poi::{classify, RobotProfile, RuleSet};
 use pyo3::prelude::*;
 use serde_json::json;
@@ -292,8 +294,12 @@ impl Building {
         pending_closed: bool,
     ) -> PyResult<Bound<'py, PyAny>> {
         let options = nav_options(resolution, furniture, pending_closed)?;
-        let from: Place = a.parse().map_err(PoinavError::new_err)?;
-        let to: Place = b.parse().map_err(PoinavError::new_err)?;
+        let from: Place = a
+            .parse()
+            .map_err(|e: NoPlace| PoinavError::new_err(e.to_string()))?;
+        let to: Place = b
+            .parse()
+            .map_err(|e: NoPlace| PoinavError::new_err(e.to_string()))?;
         let route = py.detach(|| {
             self.navigators
                 .with(&self.inner, &self.profile, &options, |nav| {

@@ -1,4 +1,5 @@
-//! `ProfileError`: why a robot profile could not be read, naming the file at fault.
+//! `ProfileError` (why a robot profile could not be read, naming the file at fault) and
+//! `UnknownLabel` (a text that is no label of a taxonomy enumeration).
 
 use thiserror::Error;
 
@@ -31,4 +32,16 @@ pub enum ProfileError {
         /// What.
         message: String,
     },
+}
+
+/// A text that is none of an enumeration's labels (a role, category, status, protocol...).
+#[derive(Debug, Clone, PartialEq, Eq, Error)]
+#[error("`{text}` is not a {kind}; expected one of {}", expected.join(", "))]
+pub struct UnknownLabel {
+    /// The text read.
+    pub text: String,
+    /// The enumeration's name (`Role`, `AccessibilityStatus`, ...).
+    pub kind: &'static str,
+    /// Its labels, in declaration order.
+    pub expected: Vec<&'static str>,
 }

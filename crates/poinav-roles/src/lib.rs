@@ -22,7 +22,7 @@ mod status;
 mod taxonomy;
 
 pub use coordination::Coordination;
-pub use error::ProfileError;
+pub use error::{ProfileError, UnknownLabel};
 pub use profile::{Locomotion, RobotProfile};
 pub use record::PoiRecord;
 pub use status::{clear_width_status, slope_status, stairs_status, Accessibility};

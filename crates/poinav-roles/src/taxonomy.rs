@@ -5,6 +5,8 @@ use std::str::FromStr;
 
 use serde::{Deserialize, Serialize};
 
+use crate::error::UnknownLabel;
+
 macro_rules! labelled_enum {
     ($(#[$meta:meta])* $name:ident { $($(#[$vmeta:meta])* $variant:ident => $label:literal),+ $(,)? }) => {
         $(#[$meta])*
@@ -32,11 +34,14 @@ macro_rules! labelled_enum {
         }
 
         impl FromStr for $name {
-            type Err = String;
-            fn from_str(s: &str) -> Result<Self, String> {
+            type Err = UnknownLabel;
+            fn from_str(s: &str) -> Result<Self, UnknownLabel> {
                 $name::ALL.iter().copied().find(|v| v.label().eq_ignore_ascii_case(s.trim())).ok_or_else(|| {
-                    let all: Vec<&str> = $name::ALL.iter().map(|v| v.label()).collect();
-                    format!("`{s}` is not a {}; expected one of {}", stringify!($name), all.join(", "))
+                    UnknownLabel {
+                        text: s.to_string(),
+                        kind: stringify!($name),
+                        expected: $name::ALL.iter().map(|v| v.label()).collect(),
+                    }
                 })
             }
         }
@@ -195,7 +200,13 @@ mod tests {
             "object-based".parse::<Category>().unwrap(),
             Category::ObjectBased
         );
-        assert!("A-9".parse::<Role>().unwrap_err().contains("A-1, A-2"));
+        let e = "A-9".parse::<Role>().unwrap_err();
+        assert_eq!((e.text.as_str(), e.kind), ("A-9", "Role"));
+        assert!(
+            e.to_string()
+                .starts_with("`A-9` is not a Role; expected one of A-1, A-2, "),
+            "{e}"
+        );
         assert_eq!(AccessibilityStatus::ALL.len(), 4);
         assert_eq!(Role::Narrow.group(), "B-Safety");
     }

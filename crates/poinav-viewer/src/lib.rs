@@ -32,6 +32,6 @@ pub use config::ServerConfig;
 pub use error::ViewerError;
 pub use live::Live;
 pub use placement::default_robots;
-pub use protocol::ClientMessage;
+pub use protocol::{ClientMessage, ProtocolError};
 pub use server::{bind, Bound};
 pub use state::{ElementInfo, ModelChunk, ViewStorey, Viewer};

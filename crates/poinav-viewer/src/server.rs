@@ -484,7 +484,7 @@ async fn client(mut socket: WebSocket, slot: Slot) {
                                 Ok(None) => None,
                                 Err(e) => {
                                     malformed += 1;
-                                    Some(e)
+                                    Some(e.to_page())
                                 }
                             }
                         }

@@ -178,8 +178,8 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         std::fs::create_dir_all(&dir).with_context(|| format!("creating {}", dir.display()))?;
         let (b, _) = crate::navigate::building(file, &paper)?;
         let nav = poinav_nav::Navigator::new(&b, &paper, &poinav_nav::NavOptions::default())?;
-        let from: poinav_nav::Place = "Room 1".parse().map_err(anyhow::Error::msg)?;
-        let to: poinav_nav::Place = "Room 2".parse().map_err(anyhow::Error::msg)?;
+        let from: poinav_nav::Place = "Room 1".parse()?;
+        let to: poinav_nav::Place = "Room 2".parse()?;
         let route = nav.route(&from, &to)?;
         let mut json = serde_json::to_string_pretty(&route)?;
         json.push('\n');

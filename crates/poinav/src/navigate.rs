@@ -240,8 +240,8 @@ pub fn route(args: &RouteArgs) -> anyhow::Result<ExitCode> {
     crate::warnings::print(&gave_up);
     warnings.extend(gave_up);
     crate::progress::stage("routing");
-    let from: Place = args.from.parse().map_err(anyhow::Error::msg)?;
-    let to: Place = args.to.parse().map_err(anyhow::Error::msg)?;
+    let from: Place = args.from.parse()?;
+    let to: Place = args.to.parse()?;
     let route = nav.route(&from, &to);
     crate::progress::end();
     match route {
