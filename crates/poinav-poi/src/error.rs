@@ -3,12 +3,20 @@
 /// Errors of the POI layer.
 #[derive(Debug, thiserror::Error)]
 pub enum PoiError {
-    /// A file could not be read.
-    #[error("{file}: {message}")]
-    Io { file: String, message: String },
-    /// A TOML file is malformed (the message carries line and column).
-    #[error("{file}: {message}")]
-    Toml { file: String, message: String },
+    /// A file could not be read (the message names the cause too, for one-line callers).
+    #[error("{file}: {source}")]
+    Io {
+        file: String,
+        #[source]
+        source: std::io::Error,
+    },
+    /// A TOML file is malformed (the cause carries line and column).
+    #[error("{file}: {source}")]
+    Toml {
+        file: String,
+        #[source]
+        source: Box<toml::de::Error>,
+    },
     /// A value in a file is out of range or inconsistent.
     #[error("{file}: {message}")]
     Invalid { file: String, message: String },

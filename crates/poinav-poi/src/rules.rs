@@ -253,9 +253,9 @@ impl RuleSet {
 
     /// Parses a rule file; returns the rules and whether the file replaces (true) or extends the defaults.
     pub fn from_toml(text: &str, origin: &str) -> Result<(RuleSet, bool), PoiError> {
-        let raw: RawFile = toml::from_str(text).map_err(|e| PoiError::Toml {
+        let raw: RawFile = toml::from_str(text).map_err(|source| PoiError::Toml {
             file: origin.into(),
-            message: e.to_string(),
+            source: Box::new(source),
         })?;
         if raw.version != 1 {
             return Err(PoiError::Invalid {
@@ -275,9 +275,9 @@ impl RuleSet {
 
     /// The defaults extended (or replaced, with `mode = "replace"`) by the rule file at `path`.
     pub fn with_user_file(path: &Path) -> Result<RuleSet, PoiError> {
-        let text = std::fs::read_to_string(path).map_err(|e| PoiError::Io {
+        let text = std::fs::read_to_string(path).map_err(|source| PoiError::Io {
             file: path.display().to_string(),
-            message: e.to_string(),
+            source,
         })?;
         let (user, replace) = RuleSet::from_toml(&text, &path.display().to_string())?;
         if replace {
