@@ -200,6 +200,22 @@ pub fn zone_at(floor: &Floor, p: DVec2) -> Option<usize> {
     })
 }
 
+/// The zone holding `p` ([`ZoneIndex::zone_at`]), else the nearest within [`SIDE_PROBE_M`]
+/// (the first on a tie): where a landing or a robot standing at `p` is.
+pub fn zone_near(floor: &Floor, zones: &ZoneIndex, p: DVec2) -> Option<usize> {
+    zones.zone_at(floor, p).or_else(|| {
+        floor
+            .zones
+            .iter()
+            .enumerate()
+            .filter(|(_, z)| z.ring.len() <= crate::bounds::ELEMENT_VERTICES)
+            .map(|(k, z)| (polygon::area_distance(&z.ring, p), k))
+            .filter(|(d, _)| *d <= SIDE_PROBE_M)
+            .min_by(|a, b| a.0.total_cmp(&b.0))
+            .map(|(_, k)| k)
+    })
+}
+
 /// The zones beyond the two faces of a passage frame (against and along its normal), probing
 /// up to [`SIDE_PROBE_M`] out.
 pub fn frame_zones(
@@ -441,17 +457,7 @@ impl Topology {
                     y: l.point.y,
                     roles: Vec::new(),
                 });
-                let zone = indexes[l.floor].zone_at(floor, l.point).or_else(|| {
-                    floor
-                        .zones
-                        .iter()
-                        .enumerate()
-                        .filter(|(_, z)| z.ring.len() <= crate::bounds::ELEMENT_VERTICES)
-                        .map(|(k, z)| (polygon::area_distance(&z.ring, l.point), k))
-                        .filter(|(d, _)| *d <= SIDE_PROBE_M)
-                        .min_by(|a, b| a.0.total_cmp(&b.0))
-                        .map(|(_, k)| k)
-                });
+                let zone = zone_near(floor, &indexes[l.floor], l.point);
                 if let Some(z) = zone {
                     let zn = zone_nodes[l.floor][z];
                     edges.push(Edge {
@@ -637,6 +643,43 @@ impl Topology {
             }
         }
         (dist, prev)
+    }
+
+    /// The doors (indices in `Floor::doors`) on the shortest way from zone `from` to zone
+    /// `to` of storey `floor`, in order, through doors `usable` accepts only (and no stair,
+    /// ramp or lift): [`Topology::search`] from `from`'s node. Empty when `from == to`; `None`
+    /// when `to` cannot be reached.
+    pub fn door_path(
+        &self,
+        floor: usize,
+        from: usize,
+        to: usize,
+        usable: impl Fn(usize) -> bool,
+    ) -> Option<Vec<usize>> {
+        let start = *self.zone_nodes.get(floor)?.get(from)?;
+        let goal = *self.zone_nodes[floor].get(to)?;
+        let (dist, prev) = self.search(
+            &[start],
+            |n| {
+                let node = &self.nodes[n];
+                match node.kind {
+                    NodeKind::Zone => Some(0.0),
+                    NodeKind::Door => (node.floor == floor && usable(node.index)).then_some(0.0),
+                    NodeKind::Landing => None,
+                }
+            },
+            |_, _| f64::INFINITY,
+        );
+        if !dist[goal].is_finite() {
+            return None;
+        }
+        Some(
+            Topology::path_to(&prev, goal)
+                .into_iter()
+                .filter(|&n| self.nodes[n].kind == NodeKind::Door)
+                .map(|n| self.nodes[n].index)
+                .collect(),
+        )
     }
 
     /// The node path ending at `goal` from [`Topology::search`]'s `prev`.

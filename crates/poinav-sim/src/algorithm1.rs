@@ -23,9 +23,9 @@ use serde::Deserialize;
 use crate::controller::{Command, Side, WallPd};
 use crate::events::{Event, EventKind};
 use crate::geometry::{point_in_ring, wrap_angle};
+use crate::plan::Plan;
 use crate::poi_db::{Element, PoiDb, RoleSet};
 use crate::robot::Robot;
-use crate::route::NavGraph;
 use crate::sensor::{Reading, FRONT, LEFT, LEFT30, RANGE_M, RIGHT, RIGHT30};
 use crate::world::{Target, World};
 
@@ -325,7 +325,7 @@ pub struct Env<'a> {
     /// The floor.
     pub floor: &'a Floor,
     /// Its graph (door axes).
-    pub nav: &'a NavGraph,
+    pub nav: &'a Plan,
     /// All robots (for tracked robots' poses and priorities).
     pub robots: &'a [Robot],
     /// The step's index: its robot boxes and grid are `robots`' footprints as they are now

@@ -519,7 +519,7 @@ fn door_waits_through_the_grid_equal_those_testing_every_robot() {
     .unwrap();
     let floor = crate::test_floor::prepared(&scenario, None);
     assert!(floor.doors.len() >= 6, "{} doors", floor.doors.len());
-    let nav = NavGraph::new(&floor);
+    let nav = Plan::new(&floor);
     let mut seed = 0x2545_F491_4F6C_DD1Du64;
     let mut rnd = || {
         seed ^= seed << 13;

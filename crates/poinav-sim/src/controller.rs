@@ -7,8 +7,8 @@ use serde::Deserialize;
 
 use crate::geometry::wrap_angle;
 use crate::key_error::KeyError;
+use crate::plan::Plan;
 use crate::robot::Limits;
-use crate::route::NavGraph;
 
 /// Which wall to follow.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
@@ -280,7 +280,7 @@ impl Follower {
     }
 
     /// The same, knowing the clear width of the door each waypoint passes through
-    /// ([`NavGraph::waypoints`]): through a door with little room to spare the robot keeps to
+    /// ([`Plan::waypoints`]): through a door with little room to spare the robot keeps to
     /// the door's axis and drives only once aligned.
     pub fn with_widths(mut self, widths: Vec<Option<f64>>) -> Follower {
         self.widths = widths;
@@ -410,7 +410,7 @@ pub struct Ctx<'a> {
     /// A-3 reference distance on the -90 ray.
     pub right_ref: Option<f64>,
     /// The floor's graph.
-    pub nav: &'a NavGraph,
+    pub nav: &'a Plan,
 }
 
 /// One robot's controller.
@@ -432,7 +432,7 @@ impl Controller {
 
     /// A route from `start` through `doors` to zone `to`.
     pub fn route(
-        nav: &NavGraph,
+        nav: &Plan,
         start: DVec2,
         doors: &[u32],
         to: u32,

@@ -16,9 +16,9 @@ use crate::controller::{Command, ControlEvent, Controller, ControllerSpec, Ctx, 
 use crate::error::SimError;
 use crate::events::{Event, EventKind};
 use crate::geometry::{overlap_segment, sweep_segment, wrap_angle, Obb, SKIN};
+use crate::plan::Plan;
 use crate::poi_db::{PoiDb, Start};
 use crate::robot::{Brush, Limits, Robot, RobotState};
-use crate::route::NavGraph;
 use crate::sensor::{self, Reading, RANGE_M};
 use crate::trace::{Names, StepRecord};
 use crate::world::World;
@@ -269,7 +269,7 @@ pub struct RunData {
 #[derive(Debug)]
 pub struct Sim<'f> {
     floor: &'f Floor,
-    nav: NavGraph,
+    nav: Plan,
     world: World,
     db: PoiDb,
     robots: Vec<Robot>,
@@ -313,7 +313,7 @@ impl<'f> Sim<'f> {
         setups: &[RobotSetup],
         opts: SimOptions,
     ) -> Result<Sim<'f>, SimError> {
-        let nav = NavGraph::new(floor);
+        let nav = Plan::new(floor);
         let max_speed = setups
             .iter()
             .map(|s| s.profile.max_speed_m_s)
@@ -359,7 +359,7 @@ impl<'f> Sim<'f> {
                 let z = zone_index(floor, to)
                     .ok_or_else(|| err(format!("zone `{to}` is not on floor `{}`", floor.name)))?;
                 let doors = nav
-                    .door_path(s.start, z, s.profile.width_m)
+                    .door_path(floor, s.start, z, &s.profile)
                     .ok_or_else(|| {
                         err(format!(
                             "no route from the start to `{to}` through doors at least {} m wide",
