@@ -17,6 +17,7 @@ use serde::Serialize;
 use crate::building::Building;
 use crate::navigator::{NavOptions, Navigator};
 use crate::route::{Blocking, Place, Target};
+use crate::space_name::SpaceNames;
 use crate::svg;
 use crate::NavError;
 

@@ -13,6 +13,7 @@ use poinav_roles::{AccessibilityStatus, RobotProfile, Role};
 use serde::Serialize;
 
 use crate::building::{door_status, passable, Building};
+use crate::door_frame::DoorFrame;
 use crate::floor::Floor;
 use crate::grid::{NavGrid, NONE};
 use crate::level::Entrance;

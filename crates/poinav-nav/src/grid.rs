@@ -16,6 +16,7 @@ use serde::Serialize;
 
 use crate::bounds::{self, GaveUp, Stage, StageBounds};
 use crate::building::{door_status, passable};
+use crate::door_frame::DoorFrame;
 use crate::floor::{Floor, ObstacleKind};
 use crate::polygon::{self, PassageFrame};
 use crate::zone_index::ZoneIndex;

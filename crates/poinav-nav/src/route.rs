@@ -20,6 +20,7 @@ use serde::Serialize;
 use crate::graph::{round6, EdgeKind, NodeKind, Topology};
 use crate::grid::{NavGrid, NEIGHBOURS, NONE};
 use crate::navigator::{FloorNav, Navigator};
+use crate::space_name::SpaceNames;
 use crate::NavError;
 
 /// Where a route starts or ends.

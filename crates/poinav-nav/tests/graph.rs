@@ -7,7 +7,7 @@ mod support;
 use glam::DVec2;
 use poinav_nav::graph::{door_zones, zone_near, Topology};
 use poinav_nav::zone_index::ZoneIndex;
-use poinav_nav::{Building, Floor};
+use poinav_nav::{Building, DoorFrame, Floor};
 use support::{door, rect, room};
 
 /// A square 1 x 1 m passage (a door in a wall as thick as the door is wide) with the hall

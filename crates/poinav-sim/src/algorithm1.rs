@@ -15,14 +15,14 @@
 //! - B-1 zones cap the speed.
 
 use glam::DVec2;
-use poinav_nav::Floor;
+use poinav_nav::{polygon, Floor};
 use poinav_roles::runtime::{Observation, RuntimeChange};
 use poinav_roles::{CoordinationProtocol, Role};
 use serde::Deserialize;
 
 use crate::controller::{Command, Side, WallPd};
 use crate::events::{Event, EventKind};
-use crate::geometry::{point_in_ring, wrap_angle};
+use crate::geometry::wrap_angle;
 use crate::plan::Plan;
 use crate::poi_db::{Element, PoiDb, RoleSet};
 use crate::robot::Robot;
@@ -530,12 +530,12 @@ pub fn perceive(
 
     // Zone: where the robot is.
     let zone = match mind.zone {
-        Some(z) if point_in_ring(pos, &env.floor.zones[z as usize].ring) => Some(z),
+        Some(z) if polygon::contains(&env.floor.zones[z as usize].ring, pos) => Some(z),
         _ => env
             .floor
             .zones
             .iter()
-            .position(|z| point_in_ring(pos, &z.ring))
+            .position(|z| polygon::contains(&z.ring, pos))
             .map(|z| z as u32),
     };
     if zone != mind.zone {

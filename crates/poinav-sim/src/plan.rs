@@ -6,7 +6,7 @@ use glam::DVec2;
 use poinav_nav::building::{door_status, passable};
 use poinav_nav::graph::zone_near;
 use poinav_nav::zone_index::ZoneIndex;
-use poinav_nav::{Building, Floor, Topology};
+use poinav_nav::{Building, DoorFrame, Floor, Topology};
 use poinav_roles::RobotProfile;
 
 /// A door as the robots steer through it.
