@@ -15,7 +15,7 @@ use serde::Serialize;
 use crate::building::{door_status, passable, Building};
 use crate::door_frame::DoorFrame;
 use crate::floor::Floor;
-use crate::grid::{NavGrid, NONE};
+use crate::grid::NavGrid;
 use crate::level::Entrance;
 use crate::polygon;
 use crate::zone_index::ZoneIndex;
@@ -502,8 +502,8 @@ impl Topology {
     /// `min_cells` cell pairs.
     pub fn add_open_boundaries(&mut self, floor: usize, grid: &NavGrid, min_cells: usize) {
         let g = &grid.occupancy;
-        let mut pairs: BTreeMap<(u32, u32), usize> = BTreeMap::new();
-        let ok = |i: usize| g.zone[i] != NONE && g.door[i] == NONE && grid.traversable(i);
+        let mut pairs: BTreeMap<(usize, usize), usize> = BTreeMap::new();
+        let ok = |i: usize| g.zone[i].is_some() && g.door[i].is_none() && grid.traversable(i);
         for r in 0..g.height {
             for c in 0..g.width {
                 let i = r * g.width + c;
@@ -512,8 +512,10 @@ impl Topology {
                 }
                 let mut check = |j: usize| {
                     if ok(j) && g.zone[j] != g.zone[i] {
-                        let (a, b) = (g.zone[i].min(g.zone[j]), g.zone[i].max(g.zone[j]));
-                        *pairs.entry((a, b)).or_default() += 1;
+                        if let (Some(zi), Some(zj)) = (g.zone[i], g.zone[j]) {
+                            let (a, b) = (zi.min(zj).get(), zi.max(zj).get());
+                            *pairs.entry((a, b)).or_default() += 1;
+                        }
                     }
                 };
                 if c + 1 < g.width {
@@ -528,10 +530,7 @@ impl Topology {
             if count < min_cells.max(1) {
                 continue;
             }
-            let (na, nb) = (
-                self.zone_nodes[floor][a as usize],
-                self.zone_nodes[floor][b as usize],
-            );
+            let (na, nb) = (self.zone_nodes[floor][a], self.zone_nodes[floor][b]);
             let id = self.edges.len();
             self.edges.push(Edge {
                 id,
