@@ -122,7 +122,7 @@ fn office_robots(floor: &Floor, n: usize) -> Vec<RobotSetup> {
                         .filter(|(z, zone)| {
                             zone.name.is_some()
                                 && nav
-                                    .door_path(floor, start, *z as u32, &p)
+                                    .door_path(floor, start, poinav_nav::ZoneIdx::new(*z), &p)
                                     .is_some_and(|d| !d.is_empty())
                         })
                         .filter_map(|(_, zone)| zone.name.as_deref())

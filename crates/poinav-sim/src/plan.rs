@@ -6,7 +6,7 @@ use glam::DVec2;
 use poinav_nav::building::{door_status, passable};
 use poinav_nav::graph::zone_near;
 use poinav_nav::zone_index::ZoneIndex;
-use poinav_nav::{Building, DoorFrame, Floor, Topology};
+use poinav_nav::{Building, DoorFrame, DoorIdx, Floor, Topology, ZoneIdx};
 use poinav_roles::RobotProfile;
 
 /// A door as the robots steer through it.
@@ -68,8 +68,8 @@ impl Plan {
     }
 
     /// The zone holding `p`, else the nearest within 0.5 m ([`zone_near`]).
-    pub fn zone_at(&self, floor: &Floor, p: DVec2) -> Option<u32> {
-        zone_near(floor, &self.zones, p).map(|z| z as u32)
+    pub fn zone_at(&self, floor: &Floor, p: DVec2) -> Option<ZoneIdx> {
+        zone_near(floor, &self.zones, p).map(ZoneIdx::new)
     }
 
     /// Doors on the shortest way from `from` to zone `to`, in order
@@ -79,17 +79,15 @@ impl Plan {
         &self,
         floor: &Floor,
         from: DVec2,
-        to: u32,
+        to: ZoneIdx,
         profile: &RobotProfile,
-    ) -> Option<Vec<u32>> {
+    ) -> Option<Vec<DoorIdx>> {
         let start = self.zone_at(floor, from)?;
-        let path = self
-            .topology
-            .door_path(0, start as usize, to as usize, |k| {
-                let d = &floor.doors[k];
-                passable(door_status(d, profile).0, true) && d.clear_width_m >= profile.width_m
-            })?;
-        Some(path.into_iter().map(|k| k as u32).collect())
+        let path = self.topology.door_path(0, start.get(), to.get(), |k| {
+            let d = &floor.doors[k];
+            passable(door_status(d, profile).0, true) && d.clear_width_m >= profile.width_m
+        })?;
+        Some(path.into_iter().map(DoorIdx::new).collect())
     }
 
     /// Waypoints from `from` through `doors` to zone `to`'s goal: before and after every door
@@ -98,15 +96,15 @@ impl Plan {
     pub fn waypoints(
         &self,
         from: DVec2,
-        doors: &[u32],
-        to: u32,
+        doors: &[DoorIdx],
+        to: ZoneIdx,
         lead: f64,
     ) -> (Vec<DVec2>, Vec<Option<f64>>) {
         let mut out = Vec::new();
         let mut widths = Vec::new();
         let mut prev = from;
         for &d in doors {
-            let door = &self.doors[d as usize];
+            let door = &self.doors[d.get()];
             match door.axis {
                 Some(axis) => {
                     let n = if (door.center - prev).dot(axis) >= 0.0 {
@@ -124,7 +122,7 @@ impl Plan {
             }
             prev = door.center;
         }
-        out.push(self.goals[to as usize]);
+        out.push(self.goals[to.get()]);
         widths.push(None);
         (out, widths)
     }

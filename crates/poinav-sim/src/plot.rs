@@ -8,7 +8,7 @@ use std::fmt::Write;
 
 use glam::DVec2;
 use poinav_io::xml::attr;
-use poinav_nav::{polygon, Floor};
+use poinav_nav::{polygon, DoorIdx, Floor};
 use poinav_roles::AccessibilityStatus;
 
 use crate::geometry::Obb;
@@ -79,7 +79,7 @@ pub fn trajectories(outcome: &Outcome, floor: &Floor) -> String {
         }
     }
     for (i, d) in floor.doors.iter().enumerate() {
-        let rec = data.db.get(data.db.index(Element::Door(i as u32)));
+        let rec = data.db.get(data.db.index(Element::Door(DoorIdx::new(i))));
         let status = rec.accessibility.as_ref().map_or(d.status, |a| a.status);
         let fill = match status {
             AccessibilityStatus::FullAccess => "#4caf50",

@@ -5,7 +5,7 @@
 //! would still end overlapping is undone, so no robot ever tunnels or overlaps.
 
 use glam::DVec2;
-use poinav_nav::Floor;
+use poinav_nav::{DoorIdx, Floor, ZoneIdx};
 use poinav_roles::runtime::Observation;
 use poinav_roles::RobotProfile;
 
@@ -295,14 +295,14 @@ pub struct Sim<'f> {
     ray_dirs: Vec<(Option<u64>, [DVec2; 5])>,
 }
 
-fn zone_index(floor: &Floor, name: &str) -> Option<u32> {
+fn zone_index(floor: &Floor, name: &str) -> Option<ZoneIdx> {
     floor
         .zones
         .iter()
         .position(|z| {
             z.name.as_deref() == Some(name) || z.long_name.as_deref() == Some(name) || z.id == name
         })
-        .map(|i| i as u32)
+        .map(ZoneIdx::new)
 }
 
 impl<'f> Sim<'f> {
@@ -355,7 +355,7 @@ impl<'f> Sim<'f> {
                 v.unwrap_or(robot.limits.max_speed)
                     .min(robot.limits.max_speed)
             };
-            let plan = |to: &str| -> Result<(Vec<u32>, u32), SimError> {
+            let plan = |to: &str| -> Result<(Vec<DoorIdx>, ZoneIdx), SimError> {
                 let z = zone_index(floor, to)
                     .ok_or_else(|| err(format!("zone `{to}` is not on floor `{}`", floor.name)))?;
                 let doors = nav
@@ -689,7 +689,7 @@ impl<'f> Sim<'f> {
                 if mode == Mode::Arrived && !*arrived {
                     *arrived = true;
                     if let Some(z) = ctrl.target {
-                        let zr = &floor.zones[z as usize];
+                        let zr = &floor.zones[z.get()];
                         events.push(Event {
                             step,
                             t,
