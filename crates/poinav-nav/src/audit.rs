@@ -485,7 +485,7 @@ fn short_name(name: Option<&str>, id: &str) -> String {
 
 impl AuditReport {
     /// Messages for every `required` space (a GlobalId, Name or LongName, `@Storey` optional,
-    /// selecting one space of `building`, as [`Building::select_space`]) that some profile
+    /// selecting one space of `building`, as [`crate::SpaceNames::select_space`]) that some profile
     /// cannot reach; empty when all are reachable. An unknown or ambiguous name is an error.
     pub fn unreachable_required(
         &self,
