@@ -231,7 +231,7 @@ fn door_paths_take_the_shortest_way_through_usable_doors() {
     let all = |_: usize| true;
     assert_eq!(topology.door_path(0, 0, 0, all), Some(vec![]));
     assert_eq!(topology.door_path(0, 0, 1, all), Some(vec![0]));
-    // Through B (about 6.4 m centre to centre) rather than the corridor (about 9.6 m).
+    // Through B (6.4 m between the zones' and doors' points) rather than the corridor (10.0 m).
     assert_eq!(topology.door_path(0, 0, 2, all), Some(vec![0, 1]));
     assert_eq!(topology.door_path(0, 2, 0, all), Some(vec![1, 0]));
     // B-C closed: round through the corridor.
