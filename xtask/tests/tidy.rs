@@ -9,15 +9,17 @@ use std::path::{Path, PathBuf};
 /// Reading IFC -> geometry -> POI rules -> navigation and simulation; exporters read their
 /// outputs; the binary, the viewer and the Python package are glue. `poinav-nav` and
 /// `poinav-sim` know no IFC and no geometry (not even through `poinav-poi`): roles and profiles
-/// come from `poinav-roles`, and `poinav-bridge` is the one way from a model to their building.
+/// come from `poinav-roles`, their building's data types from `poinav-floor` (which knows
+/// neither), and `poinav-bridge` is the one way from a model to their building.
 const ALLOWED: &[(&str, &[&str])] = &[
     ("poinav-io", &[]),
     ("poinav-ifc", &["poinav-io"]),
     ("poinav-geom", &["poinav-ifc"]),
     ("poinav-roles", &[]),
+    ("poinav-floor", &["poinav-roles"]),
     ("poinav-poi", &["poinav-ifc", "poinav-geom", "poinav-roles"]),
     ("poinav-author", &["poinav-ifc"]),
-    ("poinav-nav", &["poinav-io", "poinav-roles"]),
+    ("poinav-nav", &["poinav-io", "poinav-roles", "poinav-floor"]),
     ("poinav-sim", &["poinav-io", "poinav-roles", "poinav-nav"]),
     (
         "poinav-bridge",

@@ -4,7 +4,7 @@
 
 use glam::DVec2;
 use poinav_nav::audit::{DoorAudit, ProfileAudit, SpaceAudit, TransitionAudit};
-use poinav_nav::{AuditReport, Building, ObstacleKind};
+use poinav_nav::{AuditReport, Building, DoorFrame, ObstacleKind};
 use poinav_poi::AccessibilityStatus;
 
 use crate::guid;

@@ -22,7 +22,7 @@ use poinav_geom::element_mesh::mesh_product;
 use poinav_geom::{FloorPlan, GeomError, Mesh, ModelMeshes, PlacementCache};
 use poinav_ifc::{Entity, EntityId, Model};
 use poinav_nav::graph::{door_zones, zone_at};
-use poinav_nav::{Floor, FloorLevel};
+use poinav_nav::{DoorFrame, Floor, FloorLevel};
 use regex::Regex;
 
 /// How far beyond a door's outer face the terrain is sampled, metres.

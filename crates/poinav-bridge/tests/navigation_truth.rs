@@ -15,6 +15,7 @@ use poinav_bridge::DroppedKind;
 use poinav_geom::{floor_plans, PlanOptions, PlanSource};
 use poinav_ifc::Model;
 use poinav_nav::graph::{zone_at, NodeKind};
+use poinav_nav::DoorFrame;
 use poinav_nav::{
     audit::audit_profile, Building, CellState, ConnectionKind, Entrance, LevelSource, NavOptions,
     Navigator,

@@ -17,6 +17,7 @@ use serde::Serialize;
 use crate::building::Building;
 use crate::navigator::{NavOptions, Navigator};
 use crate::route::{Blocking, NoPlace, Place, Target};
+use crate::space_name::SpaceNames;
 use crate::svg;
 use crate::NavError;
 
@@ -486,7 +487,7 @@ fn short_name(name: Option<&str>, id: &str) -> String {
 
 impl AuditReport {
     /// Messages for every `required` space (a GlobalId, Name or LongName, `@Storey` optional,
-    /// selecting one space of `building`, as [`Building::select_space`]) that some profile
+    /// selecting one space of `building`, as [`crate::SpaceNames::select_space`]) that some profile
     /// cannot reach; empty when all are reachable. An unknown or ambiguous name is an error.
     pub fn unreachable_required(
         &self,

@@ -13,8 +13,9 @@ use poinav_roles::{AccessibilityStatus, RobotProfile, Role};
 use serde::Serialize;
 
 use crate::building::{door_status, passable, Building};
+use crate::door_frame::DoorFrame;
 use crate::floor::Floor;
-use crate::grid::{NavGrid, NONE};
+use crate::grid::NavGrid;
 use crate::level::Entrance;
 use crate::polygon;
 use crate::zone_index::ZoneIndex;
@@ -197,6 +198,22 @@ pub fn zone_at(floor: &Floor, p: DVec2) -> Option<usize> {
             && polygon::bounds(&z.ring)
                 .is_some_and(|(lo, hi)| p.x >= lo.x && p.y >= lo.y && p.x <= hi.x && p.y <= hi.y)
             && polygon::contains(&z.ring, p)
+    })
+}
+
+/// The zone holding `p` ([`ZoneIndex::zone_at`]), else the nearest within [`SIDE_PROBE_M`]
+/// (the first on a tie): where a landing or a robot standing at `p` is.
+pub fn zone_near(floor: &Floor, zones: &ZoneIndex, p: DVec2) -> Option<usize> {
+    zones.zone_at(floor, p).or_else(|| {
+        floor
+            .zones
+            .iter()
+            .enumerate()
+            .filter(|(_, z)| z.ring.len() <= crate::bounds::ELEMENT_VERTICES)
+            .map(|(k, z)| (polygon::area_distance(&z.ring, p), k))
+            .filter(|(d, _)| *d <= SIDE_PROBE_M)
+            .min_by(|a, b| a.0.total_cmp(&b.0))
+            .map(|(_, k)| k)
     })
 }
 
@@ -441,17 +458,7 @@ impl Topology {
                     y: l.point.y,
                     roles: Vec::new(),
                 });
-                let zone = indexes[l.floor].zone_at(floor, l.point).or_else(|| {
-                    floor
-                        .zones
-                        .iter()
-                        .enumerate()
-                        .filter(|(_, z)| z.ring.len() <= crate::bounds::ELEMENT_VERTICES)
-                        .map(|(k, z)| (polygon::area_distance(&z.ring, l.point), k))
-                        .filter(|(d, _)| *d <= SIDE_PROBE_M)
-                        .min_by(|a, b| a.0.total_cmp(&b.0))
-                        .map(|(_, k)| k)
-                });
+                let zone = zone_near(floor, &indexes[l.floor], l.point);
                 if let Some(z) = zone {
                     let zn = zone_nodes[l.floor][z];
                     edges.push(Edge {
@@ -495,8 +502,8 @@ impl Topology {
     /// `min_cells` cell pairs.
     pub fn add_open_boundaries(&mut self, floor: usize, grid: &NavGrid, min_cells: usize) {
         let g = &grid.occupancy;
-        let mut pairs: BTreeMap<(u32, u32), usize> = BTreeMap::new();
-        let ok = |i: usize| g.zone[i] != NONE && g.door[i] == NONE && grid.traversable(i);
+        let mut pairs: BTreeMap<(usize, usize), usize> = BTreeMap::new();
+        let ok = |i: usize| g.zone[i].is_some() && g.door[i].is_none() && grid.traversable(i);
         for r in 0..g.height {
             for c in 0..g.width {
                 let i = r * g.width + c;
@@ -505,8 +512,10 @@ impl Topology {
                 }
                 let mut check = |j: usize| {
                     if ok(j) && g.zone[j] != g.zone[i] {
-                        let (a, b) = (g.zone[i].min(g.zone[j]), g.zone[i].max(g.zone[j]));
-                        *pairs.entry((a, b)).or_default() += 1;
+                        if let (Some(zi), Some(zj)) = (g.zone[i], g.zone[j]) {
+                            let (a, b) = (zi.min(zj).get(), zi.max(zj).get());
+                            *pairs.entry((a, b)).or_default() += 1;
+                        }
                     }
                 };
                 if c + 1 < g.width {
@@ -521,10 +530,7 @@ impl Topology {
             if count < min_cells.max(1) {
                 continue;
             }
-            let (na, nb) = (
-                self.zone_nodes[floor][a as usize],
-                self.zone_nodes[floor][b as usize],
-            );
+            let (na, nb) = (self.zone_nodes[floor][a], self.zone_nodes[floor][b]);
             let id = self.edges.len();
             self.edges.push(Edge {
                 id,
@@ -637,6 +643,43 @@ impl Topology {
             }
         }
         (dist, prev)
+    }
+
+    /// The doors (indices in `Floor::doors`) on the shortest way from zone `from` to zone
+    /// `to` of storey `floor`, in order, through doors `usable` accepts only (and no stair,
+    /// ramp or lift): [`Topology::search`] from `from`'s node. Empty when `from == to`; `None`
+    /// when `to` cannot be reached.
+    pub fn door_path(
+        &self,
+        floor: usize,
+        from: usize,
+        to: usize,
+        usable: impl Fn(usize) -> bool,
+    ) -> Option<Vec<usize>> {
+        let start = *self.zone_nodes.get(floor)?.get(from)?;
+        let goal = *self.zone_nodes[floor].get(to)?;
+        let (dist, prev) = self.search(
+            &[start],
+            |n| {
+                let node = &self.nodes[n];
+                match node.kind {
+                    NodeKind::Zone => Some(0.0),
+                    NodeKind::Door => (node.floor == floor && usable(node.index)).then_some(0.0),
+                    NodeKind::Landing => None,
+                }
+            },
+            |_, _| f64::INFINITY,
+        );
+        if !dist[goal].is_finite() {
+            return None;
+        }
+        Some(
+            Topology::path_to(&prev, goal)
+                .into_iter()
+                .filter(|&n| self.nodes[n].kind == NodeKind::Door)
+                .map(|n| self.nodes[n].index)
+                .collect(),
+        )
     }
 
     /// The node path ending at `goal` from [`Topology::search`]'s `prev`.

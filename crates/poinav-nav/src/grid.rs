@@ -16,13 +16,12 @@ use serde::Serialize;
 
 use crate::bounds::{self, GaveUp, Stage, StageBounds};
 use crate::building::{door_status, passable};
+use crate::door_frame::DoorFrame;
 use crate::floor::{Floor, ObstacleKind};
 use crate::polygon::{self, PassageFrame};
 use crate::zone_index::ZoneIndex;
 use crate::NavError;
-
-/// No zone or door at a cell.
-pub const NONE: u32 = u32::MAX;
+use poinav_floor::{DoorIdx, ZoneIdx};
 
 /// What a cell is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
@@ -182,10 +181,10 @@ pub struct OccupancyGrid {
     pub height: usize,
     /// Cell states, row-major, row 0 lowest.
     pub cells: Vec<CellState>,
-    /// Index into `Floor::zones` of the zone each cell's centre is in (the first), or [`NONE`].
-    pub zone: Vec<u32>,
-    /// Index into `Floor::doors` of the door whose passage covers the cell, or [`NONE`].
-    pub door: Vec<u32>,
+    /// The zone each cell's centre is in (the first), if any.
+    pub zone: Vec<Option<ZoneIdx>>,
+    /// The door whose passage covers the cell, if any.
+    pub door: Vec<Option<DoorIdx>>,
     /// Per door of the floor: status, reason, open or closed.
     pub doors: Vec<GridDoor>,
     /// The elements rasterising gave up on ([`crate::bounds`]): zones, obstacles and doors,
@@ -367,8 +366,8 @@ impl OccupancyGrid {
                 ))
             })?;
         let mut cells = vec![CellState::Unknown; n];
-        let mut zone = vec![NONE; n];
-        let mut door = vec![NONE; n];
+        let mut zone: Vec<Option<ZoneIdx>> = vec![None; n];
+        let mut door: Vec<Option<DoorIdx>> = vec![None; n];
 
         let limits = &options.bounds;
         // Rows of the grid a box spans (cell centres inside it), for the raster work bound.
@@ -424,7 +423,7 @@ impl OccupancyGrid {
                 continue;
             }
             paint(width, height, origin, res, &z.ring, |i| {
-                zone[i] = k as u32;
+                zone[i] = Some(ZoneIdx::new(k));
                 cells[i] = CellState::Free;
             });
         }
@@ -462,7 +461,7 @@ impl OccupancyGrid {
                 .flat_map(|c| [c, (height - 1) * width + c])
                 .chain((0..height).flat_map(|r| [r * width, r * width + width - 1]));
             for i in border {
-                if !barrier[i] && zone[i] == NONE && !outside[i] {
+                if !barrier[i] && zone[i].is_none() && !outside[i] {
                     outside[i] = true;
                     stack.push(i);
                 }
@@ -470,7 +469,7 @@ impl OccupancyGrid {
             while let Some(i) = stack.pop() {
                 let (c, r) = (i % width, i / width);
                 let mut visit = |j: usize| {
-                    if !outside[j] && !barrier[j] && zone[j] == NONE {
+                    if !outside[j] && !barrier[j] && zone[j].is_none() {
                         outside[j] = true;
                         stack.push(j);
                     }
@@ -500,7 +499,7 @@ impl OccupancyGrid {
                 continue;
             };
             paint(width, height, origin, res, &rect_ring(*lo, *hi), |i| {
-                if zone[i] == NONE && cells[i] == CellState::Free {
+                if zone[i].is_none() && cells[i] == CellState::Free {
                     cells[i] = CellState::Unknown;
                 }
             });
@@ -604,18 +603,18 @@ impl OccupancyGrid {
                             f.rectangle_at(side * (f.half_width - lining), lining, f.half_depth);
                         paint(width, height, origin, res, &ring, |i| {
                             cells[i] = CellState::Occupied;
-                            door[i] = k as u32;
+                            door[i] = Some(DoorIdx::new(k));
                         });
                     }
                     let ring = f.rectangle(clear / 2.0, f.half_depth);
                     paint(width, height, origin, res, &ring, |i| {
                         cells[i] = state;
-                        door[i] = k as u32;
+                        door[i] = Some(DoorIdx::new(k));
                     });
                 } else {
                     paint(width, height, origin, res, &d.ring, |i| {
                         cells[i] = state;
-                        door[i] = k as u32;
+                        door[i] = Some(DoorIdx::new(k));
                     });
                 }
             }
@@ -630,7 +629,7 @@ impl OccupancyGrid {
                 (Some(f), Some(side)) if !d.doorless => {
                     let p = f.center + f.normal * side * (f.half_depth + 2.0 * res);
                     cell_at(origin, res, width, height, p).is_some_and(|i| {
-                        cells[i] == CellState::Free && zone[i] == NONE && door[i] == NONE
+                        cells[i] == CellState::Free && zone[i].is_none() && door[i].is_none()
                     })
                 }
                 _ => false,

@@ -2,8 +2,9 @@
 //! simulation share, and on it occupancy grids, the room/door graph, routes, the
 //! accessibility audit and Nav2 bundles.
 //!
-//! - [`building`]: a [`Building`] is storeys plus stairs, ramps and lifts; door and connection
-//!   statuses for any profile.
+//! - [`building`], [`level`], [`polygon`] and [`Floor`] are `poinav-floor`'s, re-exported: a
+//!   [`Building`] is storeys plus stairs, ramps and lifts; door and connection statuses for any
+//!   profile.
 //! - [`grid`]: rasterising a storey ([`OccupancyGrid`]) and inflating it for a robot
 //!   ([`NavGrid`]).
 //! - [`graph`]: the [`Topology`] of zones, doors and landings.
@@ -11,7 +12,7 @@
 //!   in the grid, never free, and named ([`GaveUp`]).
 //! - [`navigator`]: a building prepared for one profile ([`Navigator`]); [`route`] plans on it.
 //! - [`space_name`]: which space a GlobalId, Name, LongName or `Name@Storey` selects
-//!   ([`Building::find_space`]); an ambiguous name is an error listing the candidates.
+//!   ([`SpaceNames::find_space`]); an ambiguous name is an error listing the candidates.
 //! - [`audit`]: reachability and door statuses per profile, JSON, SVG ([`svg`]) and HTML.
 //! - [`nav2`]: map, masks, filter parameters and route graphs for Nav2 ([`route_graph`]:
 //!   nav2_route GeoJSON per storey and for the building, with operations).
@@ -65,16 +66,17 @@
 
 pub mod audit;
 pub mod bounds;
-pub mod building;
+mod door_frame;
+pub use poinav_floor::building;
 mod error;
 pub mod extent;
-mod floor;
+use poinav_floor::floor;
 pub mod graph;
 pub mod grid;
-pub mod level;
+pub use poinav_floor::level;
 pub mod nav2;
 pub mod navigator;
-pub mod polygon;
+pub use poinav_floor::polygon;
 pub mod progress;
 pub mod route;
 pub mod route_graph;
@@ -86,6 +88,7 @@ pub mod zone_index;
 pub use audit::{audit, AuditOptions, AuditReport};
 pub use bounds::{GaveUp, StageBounds};
 pub use building::{Building, ConnectionKind, Landing, VerticalConnection};
+pub use door_frame::DoorFrame;
 pub use error::NavError;
 pub use floor::{Floor, FloorDoor, FloorObstacle, FloorZone, ObstacleKind};
 pub use graph::Topology;
@@ -93,7 +96,8 @@ pub use grid::{CellState, FurnitureMode, GridOptions, InflationOptions, NavGrid,
 pub use level::{Entrance, FloorLevel, LevelSource};
 pub use nav2::{write_bundle, write_bundle_with_progress, Nav2Options};
 pub use navigator::{NavOptions, Navigator};
+pub use poinav_floor::{DoorIdx, ZoneIdx};
 pub use progress::{Phase, Progress};
 pub use route::{NoPlace, Place, Route, Unreachable};
-pub use space_name::{Ambiguous, SpaceRef};
+pub use space_name::{Ambiguous, SpaceNames, SpaceRef};
 pub use speed::{RoleSpeeds, SpeedError};

@@ -44,7 +44,7 @@ use crate::audit::slug;
 use crate::building::Building;
 use crate::floor::ObstacleKind;
 use crate::graph::round6;
-use crate::grid::{CellState, OccupancyGrid, NONE};
+use crate::grid::{CellState, OccupancyGrid};
 use crate::navigator::{NavOptions, Navigator};
 use crate::NavError;
 
@@ -332,7 +332,7 @@ fn keepout_mask(nav: &Navigator<'_>, fi: usize) -> Vec<bool> {
         .map(|d| d.status == AccessibilityStatus::Blocked)
         .collect();
     for (m, &d) in mask.iter_mut().zip(&g.door) {
-        if d != NONE && blocked_doors[d as usize] {
+        if d.is_some_and(|d| blocked_doors[d.get()]) {
             *m = true;
         }
     }

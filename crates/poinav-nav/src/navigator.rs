@@ -42,13 +42,11 @@ impl FloorNav {
     pub fn speed(&self, i: usize) -> f64 {
         let g = &self.grid.occupancy;
         let mut f = 1.0;
-        let z = g.zone[i];
-        if z != crate::grid::NONE {
-            f = self.zone_speed[z as usize];
+        if let Some(z) = g.zone[i] {
+            f = self.zone_speed[z.get()];
         }
-        let d = g.door[i];
-        if d != crate::grid::NONE {
-            f = f.min(self.door_speed[d as usize]);
+        if let Some(d) = g.door[i] {
+            f = f.min(self.door_speed[d.get()]);
         }
         f
     }

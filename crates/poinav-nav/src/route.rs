@@ -18,8 +18,9 @@ use poinav_roles::{AccessibilityStatus, Role};
 use serde::Serialize;
 
 use crate::graph::{round6, EdgeKind, NodeKind, Topology};
-use crate::grid::{NavGrid, NEIGHBOURS, NONE};
+use crate::grid::{NavGrid, NEIGHBOURS};
 use crate::navigator::{FloorNav, Navigator};
+use crate::space_name::SpaceNames;
 use crate::NavError;
 
 /// Where a route starts or ends.
@@ -560,7 +561,7 @@ impl Navigator<'_> {
         let mut best: Option<(f32, f64, usize)> = None;
         let tie = (g.resolution_m / 4.0) as f32;
         for i in 0..g.len() {
-            if g.zone[i] != zone as u32 || !grid.traversable(i) {
+            if g.zone[i].map(|z| z.get()) != Some(zone) || !grid.traversable(i) {
                 continue;
             }
             let c = grid.clearance_m[i].min(1e6);
@@ -614,14 +615,10 @@ impl Navigator<'_> {
                     ))
                 })?;
                 let g = &grid.occupancy;
-                let node = if g.zone[cell] != NONE {
-                    Some(self.topology.zone_nodes[fi][g.zone[cell] as usize])
-                } else if g.door[cell] != NONE {
-                    self.topology
-                        .door(fi, g.door[cell] as usize)
-                        .map(|d| d.node)
-                } else {
-                    None
+                let node = match (g.zone[cell], g.door[cell]) {
+                    (Some(z), _) => Some(self.topology.zone_nodes[fi][z.get()]),
+                    (None, Some(d)) => self.topology.door(fi, d.get()).map(|d| d.node),
+                    (None, None) => None,
                 };
                 Ok(Spot {
                     floor: fi,
@@ -1001,7 +998,7 @@ impl Navigator<'_> {
         let guided_ok = |i: usize| {
             let z = g.zone[i];
             let d = g.door[i];
-            (z == NONE || zones_ok[z as usize]) && (d == NONE || doors_ok[d as usize])
+            z.is_none_or(|z| zones_ok[z.get()]) && d.is_none_or(|d| doors_ok[d.get()])
         };
         let everywhere = |_: usize| true;
         let (path, guided) = if guide.is_empty() {
@@ -1035,25 +1032,24 @@ impl Navigator<'_> {
         let floor_model = &self.building.floors[floor];
         let mut doors = Vec::new();
         let mut zones: Vec<String> = Vec::new();
-        let mut last_door = NONE;
+        let mut last_door = None;
         for &i in &path {
             let d = g.door[i];
-            if d != NONE && d != last_door {
-                let door = &floor_model.doors[d as usize];
+            if let Some(k) = d.filter(|_| d != last_door).map(|d| d.get()) {
+                let door = &floor_model.doors[k];
                 doors.push(PassedDoor {
                     floor: floor_model.name.clone(),
                     id: door.id.clone(),
                     name: door.name.clone(),
-                    status: g.doors[d as usize].status,
+                    status: g.doors[k].status,
                     clear_width_m: door.clear_width_m,
                     roles: door.roles.clone(),
                     doorless: door.doorless,
                 });
             }
             last_door = d;
-            let z = g.zone[i];
-            if z != NONE {
-                let zone = &floor_model.zones[z as usize];
+            if let Some(z) = g.zone[i] {
+                let zone = &floor_model.zones[z.get()];
                 let label = zone
                     .name
                     .clone()

@@ -54,7 +54,6 @@ use glam::DVec2;
 use serde_json::{json, Map, Value};
 
 use crate::graph::{round6, EdgeKind, NodeKind};
-use crate::grid::NONE;
 use crate::nav2::Nav2Options;
 use crate::navigator::Navigator;
 use crate::route::{astar_window, simplify, window_of, CellCost};
@@ -164,11 +163,17 @@ fn crossing(nav: &Navigator<'_>, fi: usize, p: DVec2, q: DVec2) -> Crossing {
             continue;
         };
         slowest = slowest.min(fnav.speed(i));
-        if g.zone[i] != NONE && zones.last() != Some(&(g.zone[i] as usize)) {
-            zones.push(g.zone[i] as usize);
+        if let Some(z) = g.zone[i]
+            .map(|z| z.get())
+            .filter(|z| zones.last() != Some(z))
+        {
+            zones.push(z);
         }
-        if g.door[i] != NONE && doors.last() != Some(&(g.door[i] as usize)) {
-            doors.push(g.door[i] as usize);
+        if let Some(d) = g.door[i]
+            .map(|d| d.get())
+            .filter(|d| doors.last() != Some(d))
+        {
+            doors.push(d);
         }
     }
     let piece = len / n as f64;
@@ -374,7 +379,7 @@ pub fn storey_graph(nav: &Navigator<'_>, fi: usize, options: &Nav2Options) -> St
             let d = g.door[i];
             i == ca
                 || i == cb
-                || ((z == NONE || zones_ok[z as usize]) && (d == NONE || doors_ok[d as usize]))
+                || (z.is_none_or(|z| zones_ok[z.get()]) && d.is_none_or(|d| doors_ok[d.get()]))
         };
         let cost = |i: usize| costs.cost(i);
         // Search only the box around the allowed zones and doors.

@@ -71,9 +71,43 @@ fn named(z: &FloorZone, name: &str) -> bool {
     z.name.as_deref() == Some(name) || z.long_name.as_deref() == Some(name)
 }
 
-impl Building {
+/// Selecting spaces and storeys of a [`Building`] by the names users type.
+pub trait SpaceNames {
     /// Every space, in storey and file order.
-    pub fn spaces(&self) -> impl Iterator<Item = (SpaceRef, &FloorZone)> {
+    fn spaces(&self) -> impl Iterator<Item = (SpaceRef, &FloorZone)>;
+
+    /// The space `s`.
+    fn space(&self, s: SpaceRef) -> &FloorZone;
+
+    /// The spaces `name` fits on storey `floor` (every storey when `None`): the one whose
+    /// GlobalId it is, else every space with that Name or LongName.
+    fn spaces_named(&self, name: &str, floor: Option<usize>) -> Vec<SpaceRef>;
+
+    /// What to type to select exactly space `s` (see [`Candidate::selector`]).
+    fn space_selector(&self, s: SpaceRef) -> String;
+
+    /// The index of the storey named `name`; [`NavError::NotFound`] listing the storeys when
+    /// none has that name.
+    fn find_storey(&self, name: &str) -> Result<usize, NavError>;
+
+    /// The one space `text` selects: a GlobalId, Name or LongName, optionally `@Storey`
+    /// (see [`SpaceNames::find_space`]).
+    fn select_space(&self, text: &str) -> Result<SpaceRef, NavError>;
+
+    /// The one space `name` selects on storey `floor` (any storey when `None`; `storey` is the
+    /// storey's name as given, for messages): a GlobalId, or a Name or LongName that exactly
+    /// one space there has. [`NavError::NotFound`] when none fits (naming spaces whose names
+    /// differ only in case), [`NavError::Ambiguous`] listing the candidates when several do.
+    fn find_space(
+        &self,
+        name: &str,
+        floor: Option<usize>,
+        storey: Option<&str>,
+    ) -> Result<SpaceRef, NavError>;
+}
+
+impl SpaceNames for Building {
+    fn spaces(&self) -> impl Iterator<Item = (SpaceRef, &FloorZone)> {
         self.floors.iter().enumerate().flat_map(|(floor, f)| {
             f.zones
                 .iter()
@@ -82,14 +116,11 @@ impl Building {
         })
     }
 
-    /// The space `s`.
-    pub fn space(&self, s: SpaceRef) -> &FloorZone {
+    fn space(&self, s: SpaceRef) -> &FloorZone {
         &self.floors[s.floor].zones[s.zone]
     }
 
-    /// The spaces `name` fits on storey `floor` (every storey when `None`): the one whose
-    /// GlobalId it is, else every space with that Name or LongName.
-    pub fn spaces_named(&self, name: &str, floor: Option<usize>) -> Vec<SpaceRef> {
+    fn spaces_named(&self, name: &str, floor: Option<usize>) -> Vec<SpaceRef> {
         let on = |s: &SpaceRef| floor.is_none_or(|f| f == s.floor);
         let by_id: Vec<SpaceRef> = self
             .spaces()
@@ -105,8 +136,7 @@ impl Building {
             .collect()
     }
 
-    /// What to type to select exactly space `s` (see [`Candidate::selector`]).
-    pub fn space_selector(&self, s: SpaceRef) -> String {
+    fn space_selector(&self, s: SpaceRef) -> String {
         let z = self.space(s);
         let storey = &self.floors[s.floor].name;
         let unique_storey = self.floors.iter().filter(|f| &f.name == storey).count() == 1;
@@ -125,9 +155,7 @@ impl Building {
         z.id.clone()
     }
 
-    /// The index of the storey named `name`; [`NavError::NotFound`] listing the storeys when
-    /// none has that name.
-    pub fn find_storey(&self, name: &str) -> Result<usize, NavError> {
+    fn find_storey(&self, name: &str) -> Result<usize, NavError> {
         self.floor_index(name).ok_or_else(|| {
             let all: Vec<&str> = self.floors.iter().map(|f| f.name.as_str()).collect();
             NavError::NotFound(format!(
@@ -137,9 +165,7 @@ impl Building {
         })
     }
 
-    /// The one space `text` selects: a GlobalId, Name or LongName, optionally `@Storey`
-    /// (see [`Building::find_space`]).
-    pub fn select_space(&self, text: &str) -> Result<SpaceRef, NavError> {
+    fn select_space(&self, text: &str) -> Result<SpaceRef, NavError> {
         let (name, storey) = match text.rsplit_once('@') {
             Some((n, s)) => (n.trim(), Some(s.trim())),
             None => (text.trim(), None),
@@ -148,11 +174,7 @@ impl Building {
         self.find_space(name, floor, storey)
     }
 
-    /// The one space `name` selects on storey `floor` (any storey when `None`; `storey` is the
-    /// storey's name as given, for messages): a GlobalId, or a Name or LongName that exactly
-    /// one space there has. [`NavError::NotFound`] when none fits (naming spaces whose names
-    /// differ only in case), [`NavError::Ambiguous`] listing the candidates when several do.
-    pub fn find_space(
+    fn find_space(
         &self,
         name: &str,
         floor: Option<usize>,

@@ -4,8 +4,10 @@
 
 mod support;
 
-use poinav_nav::graph::{door_zones, Topology};
-use poinav_nav::{Building, Floor};
+use glam::DVec2;
+use poinav_nav::graph::{door_zones, zone_near, Topology};
+use poinav_nav::zone_index::ZoneIndex;
+use poinav_nav::{Building, DoorFrame, Floor};
 use support::{door, rect, room};
 
 /// A square 1 x 1 m passage (a door in a wall as thick as the door is wide) with the hall
@@ -199,4 +201,54 @@ fn a_door_into_a_walled_in_room_without_a_space_is_no_entrance() {
         poinav_nav::CellState::Free,
         "the front door's apron"
     );
+}
+
+/// Rooms A, B, C in a row (doors A-B and B-C) above a corridor D (doors A-D and C-D): the
+/// door path the simulator's robots plan with.
+fn row_above_corridor() -> Floor {
+    Floor {
+        name: "Ground".into(),
+        doors: vec![
+            door("ab", "A-B", rect(3.0, 1.0, 3.2, 2.0), 0.9),
+            door("bc", "B-C", rect(6.2, 1.0, 6.4, 2.0), 0.9),
+            door("ad", "A-D", rect(1.0, -0.2, 2.0, 0.0), 0.9),
+            door("cd", "C-D", rect(7.4, -0.2, 8.4, 0.0), 0.9),
+        ],
+        zones: vec![
+            room("a", "A", rect(0.0, 0.0, 3.0, 3.0)),
+            room("b", "B", rect(3.2, 0.0, 6.2, 3.0)),
+            room("c", "C", rect(6.4, 0.0, 9.4, 3.0)),
+            room("d", "D", rect(0.0, -2.2, 9.4, -0.2)),
+        ],
+        ..Floor::default()
+    }
+}
+
+#[test]
+fn door_paths_take_the_shortest_way_through_usable_doors() {
+    let floor = row_above_corridor();
+    let topology = Topology::build(&Building::single(floor.clone()));
+    let all = |_: usize| true;
+    assert_eq!(topology.door_path(0, 0, 0, all), Some(vec![]));
+    assert_eq!(topology.door_path(0, 0, 1, all), Some(vec![0]));
+    // Through B (6.4 m between the zones' and doors' points) rather than the corridor (10.0 m).
+    assert_eq!(topology.door_path(0, 0, 2, all), Some(vec![0, 1]));
+    assert_eq!(topology.door_path(0, 2, 0, all), Some(vec![1, 0]));
+    // B-C closed: round through the corridor.
+    assert_eq!(topology.door_path(0, 0, 2, |k| k != 1), Some(vec![2, 3]));
+    // C-D closed too: C cannot be reached; B still can.
+    assert_eq!(topology.door_path(0, 0, 2, |k| k != 1 && k != 3), None);
+    assert_eq!(
+        topology.door_path(0, 0, 1, |k| k != 1 && k != 3),
+        Some(vec![0])
+    );
+    // A storey or zone that does not exist.
+    assert_eq!(topology.door_path(1, 0, 2, all), None);
+    assert_eq!(topology.door_path(0, 0, 9, all), None);
+    // Where a robot stands: inside a zone, else the nearest within 0.5 m.
+    let index = ZoneIndex::new(&floor);
+    assert_eq!(zone_near(&floor, &index, DVec2::new(1.0, 1.0)), Some(0));
+    assert_eq!(zone_near(&floor, &index, DVec2::new(3.15, 2.5)), Some(1));
+    assert_eq!(zone_near(&floor, &index, DVec2::new(4.0, 3.4)), Some(1));
+    assert_eq!(zone_near(&floor, &index, DVec2::new(4.0, 3.6)), None);
 }

@@ -17,7 +17,7 @@ use glam::DVec2;
 use poinav_nav::Floor;
 use poinav_poi::RobotProfile;
 use poinav_sim::controller::{ControllerSpec, KeyPress, KeyScheme, Side};
-use poinav_sim::route::NavGraph;
+use poinav_sim::plan::Plan;
 use poinav_sim::{RobotSetup, Sim, SimOptions};
 
 fn setup(i: usize, start: DVec2, controller: ControllerSpec) -> RobotSetup {
@@ -108,7 +108,7 @@ fn office_robots(floor: &Floor, n: usize) -> Vec<RobotSetup> {
     let p = RobotProfile::paper();
     let half_diagonal = 0.5 * p.width_m.hypot(p.length_m);
     let spots = common::free_spots(floor, 1.2, half_diagonal + p.clearance_margin_m);
-    let nav = NavGraph::new(floor);
+    let nav = Plan::new(floor);
     common::spread(&spots, n)
         .into_iter()
         .enumerate()
@@ -122,7 +122,7 @@ fn office_robots(floor: &Floor, n: usize) -> Vec<RobotSetup> {
                         .filter(|(z, zone)| {
                             zone.name.is_some()
                                 && nav
-                                    .door_path(start, *z as u32, p.width_m)
+                                    .door_path(floor, start, poinav_nav::ZoneIdx::new(*z), &p)
                                     .is_some_and(|d| !d.is_empty())
                         })
                         .filter_map(|(_, zone)| zone.name.as_deref())

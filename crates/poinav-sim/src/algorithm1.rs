@@ -15,17 +15,17 @@
 //! - B-1 zones cap the speed.
 
 use glam::DVec2;
-use poinav_nav::Floor;
+use poinav_nav::{polygon, DoorIdx, Floor, ZoneIdx};
 use poinav_roles::runtime::{Observation, RuntimeChange};
 use poinav_roles::{CoordinationProtocol, Role};
 use serde::Deserialize;
 
 use crate::controller::{Command, Side, WallPd};
 use crate::events::{Event, EventKind};
-use crate::geometry::{point_in_ring, wrap_angle};
+use crate::geometry::wrap_angle;
+use crate::plan::Plan;
 use crate::poi_db::{Element, PoiDb, RoleSet};
 use crate::robot::Robot;
-use crate::route::NavGraph;
 use crate::sensor::{Reading, FRONT, LEFT, LEFT30, RANGE_M, RIGHT, RIGHT30};
 use crate::world::{Target, World};
 
@@ -85,7 +85,7 @@ impl Default for Behaviour {
 /// and again whenever the estimate changes by more than 1 mm.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Estimator {
-    door: u32,
+    door: DoorIdx,
     origin: DVec2,
     axis: DVec2,
     band: (f64, f64),
@@ -109,7 +109,7 @@ pub struct Estimator {
 }
 
 impl Estimator {
-    fn start(door: u32, centre: DVec2, axis: DVec2, ring: &[DVec2]) -> Estimator {
+    fn start(door: DoorIdx, centre: DVec2, axis: DVec2, ring: &[DVec2]) -> Estimator {
         let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
         for p in ring {
             let d = (*p - centre).dot(axis);
@@ -152,7 +152,10 @@ impl Estimator {
                 }
             }
             let along = dir.dot(self.axis);
-            if dir.dot(lat).abs() > 0.2 && along > 1e-9 && ray.passages.contains(self.door) {
+            if dir.dot(lat).abs() > 0.2
+                && along > 1e-9
+                && ray.passages.contains(self.door.get() as u32)
+            {
                 // Where the ray crossed the face line, on a side that has a wall point.
                 let t = (self.face() - (pos - self.origin).dot(self.axis)) / along;
                 let u = (pos + dir * t - self.origin).dot(lat);
@@ -233,10 +236,10 @@ pub struct Mind {
     /// The robot's own C-2.
     pub c2: bool,
     /// Current zone.
-    pub zone: Option<u32>,
+    pub zone: Option<ZoneIdx>,
     keep: Option<WallPd>,
     /// The single-lane door it is waiting at for another robot, if any.
-    door_wait: Option<u32>,
+    door_wait: Option<DoorIdx>,
 }
 
 impl Mind {
@@ -325,7 +328,7 @@ pub struct Env<'a> {
     /// The floor.
     pub floor: &'a Floor,
     /// Its graph (door axes).
-    pub nav: &'a NavGraph,
+    pub nav: &'a Plan,
     /// All robots (for tracked robots' poses and priorities).
     pub robots: &'a [Robot],
     /// The step's index: its robot boxes and grid are `robots`' footprints as they are now
@@ -424,7 +427,7 @@ pub const DOOR_CONFLICT_M: f64 = 3.0;
 /// [`DOOR_CONFLICT_M`] of the door, so a crowd at the doors costs what its neighbourhoods
 /// hold, not every robot per robot; the decision is the same as testing every robot
 /// ([`door_wait_every_robot`]), since a robot farther than that never counts.
-fn door_wait(me: usize, env: &Env<'_>, held: Option<u32>) -> Option<(u32, f64)> {
+fn door_wait(me: usize, env: &Env<'_>, held: Option<DoorIdx>) -> Option<(DoorIdx, f64)> {
     door_wait_with(me, env, held, |center, f| {
         let r = DVec2::splat(DOOR_CONFLICT_M);
         env.world.any_robot_near(center - r, center + r, f)
@@ -432,7 +435,11 @@ fn door_wait(me: usize, env: &Env<'_>, held: Option<u32>) -> Option<(u32, f64)> 
 }
 
 /// [`door_wait`] testing every robot (the reference for tests).
-pub fn door_wait_every_robot(me: usize, env: &Env<'_>, held: Option<u32>) -> Option<(u32, f64)> {
+pub fn door_wait_every_robot(
+    me: usize,
+    env: &Env<'_>,
+    held: Option<DoorIdx>,
+) -> Option<(DoorIdx, f64)> {
     door_wait_with(me, env, held, |_, f| {
         (0..env.robots.len() as u32).any(&mut *f)
     })
@@ -443,22 +450,22 @@ pub fn door_wait_every_robot(me: usize, env: &Env<'_>, held: Option<u32>) -> Opt
 fn door_wait_with(
     me: usize,
     env: &Env<'_>,
-    held: Option<u32>,
+    held: Option<DoorIdx>,
     others: impl Fn(DVec2, &mut dyn FnMut(u32) -> bool) -> bool,
-) -> Option<(u32, f64)> {
+) -> Option<(DoorIdx, f64)> {
     let robot = &env.robots[me];
     let lim = &robot.limits;
     let pos = robot.state.pos;
     let dir = env.world.robot(me).ax;
     let cone = 50f64.to_radians().cos();
-    let mut nearest: Option<(u32, f64)> = None;
+    let mut nearest: Option<(DoorIdx, f64)> = None;
     for (d, door) in env.floor.doors.iter().enumerate() {
         let Some(axis) = env.nav.doors[d].axis else {
             continue;
         };
         let to = door.center - pos;
         let mine = to.length();
-        let in_cone = to.dot(dir) >= cone * mine || held == Some(d as u32);
+        let in_cone = to.dot(dir) >= cone * mine || held == Some(DoorIdx::new(d));
         if !(1e-9..=DOOR_CONFLICT_M).contains(&mine) || !in_cone {
             continue;
         }
@@ -483,11 +490,11 @@ fn door_wait_with(
                 || ((theirs - mine).abs() <= 0.05 && !has_priority(env.robots, me, r));
             // Once waiting, wait until the other has also cleared the door on this side (it
             // turns there, sweeping its corners).
-            let clearing = held == Some(d as u32) && theirs < DOOR_CLEAR_M;
+            let clearing = held == Some(DoorIdx::new(d)) && theirs < DOOR_CLEAR_M;
             (other_side && coming && they_go) || clearing
         });
         if waits && nearest.is_none_or(|n| mine < n.1) {
-            nearest = Some((d as u32, mine));
+            nearest = Some((DoorIdx::new(d), mine));
         }
     }
     nearest
@@ -530,17 +537,17 @@ pub fn perceive(
 
     // Zone: where the robot is.
     let zone = match mind.zone {
-        Some(z) if point_in_ring(pos, &env.floor.zones[z as usize].ring) => Some(z),
+        Some(z) if polygon::contains(&env.floor.zones[z.get()].ring, pos) => Some(z),
         _ => env
             .floor
             .zones
             .iter()
-            .position(|z| point_in_ring(pos, &z.ring))
-            .map(|z| z as u32),
+            .position(|z| polygon::contains(&z.ring, pos))
+            .map(ZoneIdx::new),
     };
     if zone != mind.zone {
         if let Some(z) = zone {
-            let zr = &env.floor.zones[z as usize];
+            let zr = &env.floor.zones[z.get()];
             sink.push(
                 env,
                 &robot.name,
@@ -589,7 +596,7 @@ pub fn perceive(
             }
         };
         for &d in ray.passages.doors() {
-            roles = roles.union(db.roles(db.index(Element::Door(d))));
+            roles = roles.union(db.roles(db.index(Element::Door(DoorIdx::new(d as usize)))));
         }
         if !avoid {
             continue;
@@ -611,9 +618,14 @@ pub fn perceive(
     }
 
     // doors ahead.
-    let mut ahead: Vec<u32> = Vec::new();
+    let mut ahead: Vec<DoorIdx> = Vec::new();
     for k in [FRONT, LEFT30, RIGHT30] {
-        for &d in reading.rays[k].passages.doors() {
+        for d in reading.rays[k]
+            .passages
+            .doors()
+            .iter()
+            .map(|&d| DoorIdx::new(d as usize))
+        {
             if !ahead.contains(&d) {
                 ahead.push(d);
             }
@@ -632,13 +644,13 @@ pub fn perceive(
         }
         // Only doors the robot is about to pass through: axis along the heading, centre on
         // the robot's path.
-        let rel = env.floor.doors[d as usize].center - pos;
+        let rel = env.floor.doors[d.get()].center - pos;
         let s = rel.dot(dir);
-        let through = env.nav.doors[d as usize]
+        let through = env.nav.doors[d.get()]
             .axis
             .is_some_and(|a| a.dot(dir).abs() >= 45f64.to_radians().cos());
         let on_path = rel.dot(dir.perp()).abs()
-            <= 0.5 * env.floor.doors[d as usize].clear_width_m + lim.half_width;
+            <= 0.5 * env.floor.doors[d.get()].clear_width_m + lim.half_width;
         if s < -lim.half_length || !through || !on_path {
             continue;
         }
@@ -657,9 +669,9 @@ pub fn perceive(
             .as_ref()
             .filter(|e| e.door == d)
             .and_then(Estimator::estimate);
-        let width = measured.unwrap_or(env.floor.doors[d as usize].clear_width_m);
+        let width = measured.unwrap_or(env.floor.doors[d.get()].clear_width_m);
         if width < 2.0 * lim.half_width + 0.01 {
-            let near = env.floor.doors[d as usize]
+            let near = env.floor.doors[d.get()]
                 .ring
                 .iter()
                 .map(|p| (*p - pos).dot(dir))
@@ -691,7 +703,7 @@ pub fn perceive(
     let mut keep_right = false;
     let mut stop = false;
     let coordination = zone.and_then(|z| {
-        let zr = &env.floor.zones[z as usize];
+        let zr = &env.floor.zones[z.get()];
         let rec = db.index(Element::Zone(z));
         if db.roles(rec).has(Role::MultiRobotZone) {
             zr.coordination
@@ -775,7 +787,7 @@ fn sensor_clearance(
     env: &Env<'_>,
     db: &PoiDb,
     mind: &mut Mind,
-    ahead: &[u32],
+    ahead: &[DoorIdx],
 ) -> Option<(usize, f64)> {
     let robot = &env.robots[me];
     let pos = robot.state.pos;
@@ -793,17 +805,17 @@ fn sensor_clearance(
             if !db.roles(rec).has(Role::Transition) {
                 continue;
             }
-            let Some(axis) = env.nav.doors[d as usize].axis else {
+            let Some(axis) = env.nav.doors[d.get()].axis else {
                 continue;
             };
-            let to = env.floor.doors[d as usize].center - pos;
+            let to = env.floor.doors[d.get()].center - pos;
             let off = wrap_angle(to.y.atan2(to.x) - robot.state.heading).abs();
             if axis.dot(dir).abs() >= max_off.cos()
                 && off <= 20f64.to_radians()
                 && to.length() <= RANGE_M
             {
                 let axis = if axis.dot(dir) >= 0.0 { axis } else { -axis };
-                let door = &env.floor.doors[d as usize];
+                let door = &env.floor.doors[d.get()];
                 mind.estimator = Some(Estimator::start(d, door.center, axis, &door.ring));
                 break;
             }
@@ -866,7 +878,7 @@ pub fn zone_coordination(
     let mut closest: Vec<Option<(f64, usize)>> = vec![None; zones];
     let mut present: Vec<Option<usize>> = vec![None; zones];
     for (i, m) in minds.iter().enumerate() {
-        let Some(z) = m.zone.map(|z| z as usize).filter(|&z| z < zones) else {
+        let Some(z) = m.zone.map(ZoneIdx::get).filter(|&z| z < zones) else {
             continue;
         };
         present[z].get_or_insert(i);
@@ -880,7 +892,7 @@ pub fn zone_coordination(
         if zone.coordination.is_none() {
             continue;
         }
-        let rec = db.index(Element::Zone(z as u32));
+        let rec = db.index(Element::Zone(ZoneIdx::new(z)));
         let (closest, present) = (closest[z], present[z]);
         let has = db.roles(rec).has(Role::RobotInteraction);
         let (distance, who) = match (closest, has) {

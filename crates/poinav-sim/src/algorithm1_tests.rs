@@ -94,7 +94,7 @@ fn approach(w: f64, step: f64) -> (Vec<(f64, f64, AccessibilityStatus)>, Accessi
         vec![robot("R", DVec2::new(0.0, -3.5), FRAC_PI_2, 0)],
     );
     let status = |v: &View<'_>| {
-        let rec = v.db.index(Element::Door(0));
+        let rec = v.db.index(Element::Door(DoorIdx::new(0)));
         v.db.get(rec).accessibility.as_ref().unwrap().status
     };
     let before = status(&v);
@@ -150,7 +150,7 @@ fn a2_a_loose_bracket_is_no_estimate() {
 #[test]
 fn a2_estimator_has_no_estimate_before_evidence() {
     let ring = rect(-0.4, 0.0, 0.4, 0.2);
-    let e = Estimator::start(0, DVec2::new(0.0, 0.1), DVec2::Y, &ring);
+    let e = Estimator::start(DoorIdx::new(0), DVec2::new(0.0, 0.1), DVec2::Y, &ring);
     assert_eq!(e.estimate(), None);
     // The face is the opening's near side until a ray hits it.
     assert!(close(e.face(), -0.1));
@@ -216,11 +216,11 @@ fn c1_a_zone_carries_c2_while_a_robot_in_it_has_it() {
             robot("B", DVec2::new(0.0, 1.0), 0.0, 0),
         ],
     );
-    let rec = v.db.index(Element::Zone(0));
+    let rec = v.db.index(Element::Zone(ZoneIdx::new(0)));
     assert!(!v.db.roles(rec).has(Role::RobotInteraction));
     let mut minds = vec![Mind::new(), Mind::new()];
     for m in &mut minds {
-        m.zone = Some(0);
+        m.zone = Some(ZoneIdx::new(0));
         m.c2 = true;
     }
     let nearest = [Some((1, 1.0)), Some((0, 1.0))];
@@ -392,7 +392,7 @@ fn at_door(w: f64, ya: f64, yb: f64) -> [(Option<u32>, f64); 2] {
         let mut mind = Mind::new();
         let (p, _) = v.perceive(i, &mut mind);
         assert_eq!(mind.c2, mind.door_wait.is_some());
-        (mind.door_wait, p.speed_cap)
+        (mind.door_wait.map(|d| d.get() as u32), p.speed_cap)
     })
 }
 
@@ -437,9 +437,9 @@ fn c2_a_robot_that_waited_waits_until_the_other_has_cleared_the_door() {
         // 1.0 m and 1.5 m from the centre: within and beyond DOOR_CLEAR_M (1.3 m).
         assert!(close(b.distance(centre), if waits { 1.0 } else { 1.5 }));
         let mut held = Mind::new();
-        held.door_wait = Some(0);
+        held.door_wait = Some(DoorIdx::new(0));
         v.perceive(0, &mut held);
-        assert_eq!(held.door_wait, waits.then_some(0), "B at {b}");
+        assert_eq!(held.door_wait, waits.then_some(DoorIdx::new(0)), "B at {b}");
         // A robot that had not waited does not start to.
         let mut fresh = Mind::new();
         v.perceive(0, &mut fresh);
@@ -519,7 +519,7 @@ fn door_waits_through_the_grid_equal_those_testing_every_robot() {
     .unwrap();
     let floor = crate::test_floor::prepared(&scenario, None);
     assert!(floor.doors.len() >= 6, "{} doors", floor.doors.len());
-    let nav = NavGraph::new(&floor);
+    let nav = Plan::new(&floor);
     let mut seed = 0x2545_F491_4F6C_DD1Du64;
     let mut rnd = || {
         seed ^= seed << 13;
@@ -570,7 +570,7 @@ fn door_waits_through_the_grid_equal_those_testing_every_robot() {
             t: 0.0,
         };
         for me in 0..robots.len() {
-            let held = (me % 4 == 0).then_some((me / 4 % floor.doors.len()) as u32);
+            let held = (me % 4 == 0).then_some(DoorIdx::new(me / 4 % floor.doors.len()));
             let fast = door_wait(me, &env, held);
             assert_eq!(fast, door_wait_every_robot(me, &env, held), "robot {me}");
             waits += usize::from(fast.is_some());

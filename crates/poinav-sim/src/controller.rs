@@ -3,12 +3,13 @@
 //! key presses (arrow keys or W A S D, and the brush button) at given times.
 
 use glam::DVec2;
+use poinav_nav::{DoorIdx, ZoneIdx};
 use serde::Deserialize;
 
 use crate::geometry::wrap_angle;
 use crate::key_error::KeyError;
+use crate::plan::Plan;
 use crate::robot::Limits;
-use crate::route::NavGraph;
 
 /// Which wall to follow.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
@@ -280,7 +281,7 @@ impl Follower {
     }
 
     /// The same, knowing the clear width of the door each waypoint passes through
-    /// ([`NavGraph::waypoints`]): through a door with little room to spare the robot keeps to
+    /// ([`Plan::waypoints`]): through a door with little room to spare the robot keeps to
     /// the door's axis and drives only once aligned.
     pub fn with_widths(mut self, widths: Vec<Option<f64>>) -> Follower {
         self.widths = widths;
@@ -373,7 +374,7 @@ enum Kind {
     WallFollow {
         pd: WallPd,
         cruise: f64,
-        turn_at: Option<(u32, Vec<u32>, u32)>,
+        turn_at: Option<(DoorIdx, Vec<DoorIdx>, ZoneIdx)>,
         then: Option<Follower>,
     },
     Keys {
@@ -410,7 +411,7 @@ pub struct Ctx<'a> {
     /// A-3 reference distance on the -90 ray.
     pub right_ref: Option<f64>,
     /// The floor's graph.
-    pub nav: &'a NavGraph,
+    pub nav: &'a Plan,
 }
 
 /// One robot's controller.
@@ -418,7 +419,7 @@ pub struct Ctx<'a> {
 pub struct Controller {
     kind: Kind,
     /// The zone it drives to, if any.
-    pub target: Option<u32>,
+    pub target: Option<ZoneIdx>,
 }
 
 impl Controller {
@@ -432,10 +433,10 @@ impl Controller {
 
     /// A route from `start` through `doors` to zone `to`.
     pub fn route(
-        nav: &NavGraph,
+        nav: &Plan,
         start: DVec2,
-        doors: &[u32],
-        to: u32,
+        doors: &[DoorIdx],
+        to: ZoneIdx,
         cruise: f64,
         lead: f64,
     ) -> Controller {
@@ -451,7 +452,7 @@ impl Controller {
         side: Side,
         distance: f64,
         cruise: f64,
-        target: Option<(Vec<u32>, u32)>,
+        target: Option<(Vec<DoorIdx>, ZoneIdx)>,
     ) -> Controller {
         let to = target.as_ref().map(|t| t.1);
         Controller {
@@ -561,12 +562,12 @@ impl Controller {
                 let dir = DVec2::from_angle(c.heading);
                 let mut v = *cruise;
                 if let Some((door, doors, to)) = turn_at {
-                    let centre = c.nav.doors[*door as usize].center;
+                    let centre = c.nav.doors[door.get()].center;
                     let s = (centre - c.pos).dot(dir);
                     if s <= 0.02 {
                         let (mut wps, mut widths) =
                             c.nav.waypoints(c.pos, doors, *to, lim.half_length + 0.5);
-                        if c.nav.doors[*door as usize].axis.is_some() {
+                        if c.nav.doors[door.get()].axis.is_some() {
                             wps.remove(0);
                             widths.remove(0);
                         }

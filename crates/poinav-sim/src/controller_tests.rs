@@ -105,7 +105,7 @@ fn keys_parse_in_their_scheme_only() {
     assert!(Key::parse(Arrows, "w").is_err());
 }
 
-fn ctx<'a>(t: f64, lim: &'a Limits, nav: &'a NavGraph) -> Ctx<'a> {
+fn ctx<'a>(t: f64, lim: &'a Limits, nav: &'a Plan) -> Ctx<'a> {
     Ctx {
         t,
         pos: DVec2::ZERO,
@@ -121,7 +121,7 @@ fn ctx<'a>(t: f64, lim: &'a Limits, nav: &'a NavGraph) -> Ctx<'a> {
 #[test]
 fn a_key_script_drives_at_the_limits() {
     let floor = open_floor(None);
-    let nav = NavGraph::new(&floor);
+    let nav = Plan::new(&floor);
     let lim = robot("R", DVec2::ZERO, 0.0, 0).limits;
     let key = |t, k, down, name: &str| (t, k, down, name.to_string());
     let mut c = Controller::keys(vec![
@@ -174,7 +174,7 @@ fn a_key_script_drives_at_the_limits() {
 #[test]
 fn a_live_key_takes_over_and_repeats_are_ignored() {
     let floor = open_floor(None);
-    let nav = NavGraph::new(&floor);
+    let nav = Plan::new(&floor);
     let lim = robot("R", DVec2::ZERO, 0.0, 0).limits;
     let mut c = Controller::wall_follow(Side::Left, 0.5, 1.0, None);
     assert_eq!(c.mode(), Mode::WallFollow);

@@ -1,8 +1,10 @@
 //! Exact plane geometry in f64 for the simulator: ray casts against segments and oriented boxes,
 //! the time of impact of a translating convex polygon against a segment, and overlap (separating
-//! axis) tests with the smallest push-out.
+//! axis) tests with the smallest push-out. Plane geometry on rings (containment, distances,
+//! centroids) is `poinav-floor`'s `polygon`, ring first.
 
 use glam::DVec2;
+use poinav_nav::polygon::segment_distance;
 
 /// Distance kept between bodies after a stop or a push-out, metres. Keeps touching bodies from
 /// counting as overlapping in the next test; far below anything the trace shows (1 µm).
@@ -219,69 +221,11 @@ pub fn polygon_gap(p: &[DVec2; 4], q: &[DVec2; 4]) -> f64 {
     for (a, b) in [(p, q), (q, p)] {
         for &v in a.iter() {
             for k in 0..4 {
-                best = best.min(point_segment_distance(v, b[k], b[(k + 1) % 4]));
+                best = best.min(segment_distance(v, b[k], b[(k + 1) % 4]));
             }
         }
     }
     best
-}
-
-/// Distance from `p` to segment `a`-`b`.
-pub fn point_segment_distance(p: DVec2, a: DVec2, b: DVec2) -> f64 {
-    let e = b - a;
-    let l2 = e.length_squared();
-    let t = if l2 > 0.0 {
-        ((p - a).dot(e) / l2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    (a + e * t).distance(p)
-}
-
-/// True when `p` is inside the ring (even-odd rule; the ring may or may not repeat its first
-/// point).
-pub fn point_in_ring(p: DVec2, ring: &[DVec2]) -> bool {
-    let n = ring.len();
-    if n < 3 {
-        return false;
-    }
-    let mut inside = false;
-    let mut j = n - 1;
-    for i in 0..n {
-        let (a, b) = (ring[i], ring[j]);
-        if (a.y > p.y) != (b.y > p.y) && p.x < (b.x - a.x) * (p.y - a.y) / (b.y - a.y) + a.x {
-            inside = !inside;
-        }
-        j = i;
-    }
-    inside
-}
-
-/// Distance from `p` to the ring's area: 0 inside, else the distance to its boundary.
-pub fn ring_distance(p: DVec2, ring: &[DVec2]) -> f64 {
-    if point_in_ring(p, ring) {
-        return 0.0;
-    }
-    let n = ring.len();
-    (0..n)
-        .map(|i| point_segment_distance(p, ring[i], ring[(i + 1) % n]))
-        .fold(f64::INFINITY, f64::min)
-}
-
-/// Area centroid of a ring (vertex mean for degenerate rings).
-pub fn ring_centroid(ring: &[DVec2]) -> DVec2 {
-    let n = ring.len();
-    let (mut a, mut c) = (0.0, DVec2::ZERO);
-    for i in 0..n {
-        let (p, q) = (ring[i], ring[(i + 1) % n]);
-        let cross = p.perp_dot(q);
-        a += cross;
-        c += (p + q) * cross;
-    }
-    if a.abs() < 1e-12 {
-        return ring.iter().copied().sum::<DVec2>() / n.max(1) as f64;
-    }
-    c / (3.0 * a)
 }
 
 /// Wraps an angle to (-pi, pi].
@@ -334,17 +278,7 @@ mod tests {
     }
 
     #[test]
-    fn rings() {
-        let sq = [
-            DVec2::new(0.0, 0.0),
-            DVec2::new(2.0, 0.0),
-            DVec2::new(2.0, 2.0),
-            DVec2::new(0.0, 2.0),
-        ];
-        assert!(point_in_ring(DVec2::new(1.0, 1.0), &sq));
-        assert!(!point_in_ring(DVec2::new(3.0, 1.0), &sq));
-        assert_eq!(ring_centroid(&sq), DVec2::new(1.0, 1.0));
-        assert!((ring_distance(DVec2::new(3.0, 1.0), &sq) - 1.0).abs() < 1e-12);
+    fn angles_wrap() {
         assert!((wrap_angle(3.0 * std::f64::consts::PI) - std::f64::consts::PI).abs() < 1e-12);
     }
 }

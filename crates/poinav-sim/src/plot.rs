@@ -8,10 +8,10 @@ use std::fmt::Write;
 
 use glam::DVec2;
 use poinav_io::xml::attr;
-use poinav_nav::Floor;
+use poinav_nav::{polygon, DoorIdx, Floor};
 use poinav_roles::AccessibilityStatus;
 
-use crate::geometry::{ring_centroid, Obb};
+use crate::geometry::Obb;
 use crate::poi_db::Element;
 use crate::run::Outcome;
 use crate::trace::fixed;
@@ -63,7 +63,7 @@ pub fn trajectories(outcome: &Outcome, floor: &Floor) -> String {
             r##"<polygon points="{}" fill="#f3f3f3" stroke="#bbbbbb" stroke-width="1"/>"##,
             poly(&z.ring)
         );
-        let (x, y) = px(ring_centroid(&z.ring));
+        let (x, y) = px(polygon::centroid(&z.ring).unwrap_or_default());
         let label = z.name.as_deref().unwrap_or(&z.id);
         let _ = writeln!(
             s,
@@ -79,7 +79,7 @@ pub fn trajectories(outcome: &Outcome, floor: &Floor) -> String {
         }
     }
     for (i, d) in floor.doors.iter().enumerate() {
-        let rec = data.db.get(data.db.index(Element::Door(i as u32)));
+        let rec = data.db.get(data.db.index(Element::Door(DoorIdx::new(i))));
         let status = rec.accessibility.as_ref().map_or(d.status, |a| a.status);
         let fill = match status {
             AccessibilityStatus::FullAccess => "#4caf50",

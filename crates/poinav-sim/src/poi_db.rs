@@ -5,7 +5,7 @@
 
 use std::collections::BTreeMap;
 
-use poinav_nav::{Floor, ObstacleKind};
+use poinav_nav::{DoorIdx, Floor, ObstacleKind, ZoneIdx};
 use poinav_roles::runtime::{self, Observation, RuntimeChange};
 use poinav_roles::{
     Accessibility, AccessibilityStatus, AppliesTo, Category, Coordination, PoiRecord, PoiType,
@@ -58,10 +58,10 @@ impl RoleSet {
 pub enum Element {
     /// Floor obstacle `i`.
     Obstacle(u32),
-    /// Floor door `i`.
-    Door(u32),
-    /// Floor zone `i`.
-    Zone(u32),
+    /// A floor door.
+    Door(DoorIdx),
+    /// A floor zone.
+    Zone(ZoneIdx),
 }
 
 /// How the database starts.
@@ -202,8 +202,8 @@ impl PoiDb {
     pub fn index(&self, e: Element) -> usize {
         match e {
             Element::Obstacle(i) => i as usize,
-            Element::Door(i) => self.doors_at + i as usize,
-            Element::Zone(i) => self.zones_at + i as usize,
+            Element::Door(i) => self.doors_at + i.get(),
+            Element::Zone(i) => self.zones_at + i.get(),
         }
     }
 

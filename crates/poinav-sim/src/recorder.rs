@@ -37,7 +37,7 @@ pub struct RobotFigures {
     /// Last position.
     pub end: Option<(DVec2, f64)>,
     /// Last zone.
-    pub end_zone: Option<u32>,
+    pub end_zone: Option<poinav_nav::ZoneIdx>,
     prev: Option<DVec2>,
 }
 

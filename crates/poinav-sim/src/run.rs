@@ -64,7 +64,7 @@ impl Outcome {
                     "travelled_m": round(f.travelled),
                     "max_speed_m_s": round(f.max_speed),
                     "end": f.end.map(|(p, h)| json!({"x": round(p.x), "y": round(p.y), "heading_deg": round(h.to_degrees())})),
-                    "end_zone": f.end_zone.map(|z| self.data.names.zones[z as usize].clone()),
+                    "end_zone": f.end_zone.map(|z| self.data.names.zones[z.get()].clone()),
                 })
             })
             .collect();

@@ -5,7 +5,7 @@
 //! would still end overlapping is undone, so no robot ever tunnels or overlaps.
 
 use glam::DVec2;
-use poinav_nav::Floor;
+use poinav_nav::{DoorIdx, Floor, ZoneIdx};
 use poinav_roles::runtime::Observation;
 use poinav_roles::RobotProfile;
 
@@ -16,9 +16,9 @@ use crate::controller::{Command, ControlEvent, Controller, ControllerSpec, Ctx, 
 use crate::error::SimError;
 use crate::events::{Event, EventKind};
 use crate::geometry::{overlap_segment, sweep_segment, wrap_angle, Obb, SKIN};
+use crate::plan::Plan;
 use crate::poi_db::{PoiDb, Start};
 use crate::robot::{Brush, Limits, Robot, RobotState};
-use crate::route::NavGraph;
 use crate::sensor::{self, Reading, RANGE_M};
 use crate::trace::{Names, StepRecord};
 use crate::world::World;
@@ -269,7 +269,7 @@ pub struct RunData {
 #[derive(Debug)]
 pub struct Sim<'f> {
     floor: &'f Floor,
-    nav: NavGraph,
+    nav: Plan,
     world: World,
     db: PoiDb,
     robots: Vec<Robot>,
@@ -295,14 +295,14 @@ pub struct Sim<'f> {
     ray_dirs: Vec<(Option<u64>, [DVec2; 5])>,
 }
 
-fn zone_index(floor: &Floor, name: &str) -> Option<u32> {
+fn zone_index(floor: &Floor, name: &str) -> Option<ZoneIdx> {
     floor
         .zones
         .iter()
         .position(|z| {
             z.name.as_deref() == Some(name) || z.long_name.as_deref() == Some(name) || z.id == name
         })
-        .map(|i| i as u32)
+        .map(ZoneIdx::new)
 }
 
 impl<'f> Sim<'f> {
@@ -313,7 +313,7 @@ impl<'f> Sim<'f> {
         setups: &[RobotSetup],
         opts: SimOptions,
     ) -> Result<Sim<'f>, SimError> {
-        let nav = NavGraph::new(floor);
+        let nav = Plan::new(floor);
         let max_speed = setups
             .iter()
             .map(|s| s.profile.max_speed_m_s)
@@ -355,11 +355,11 @@ impl<'f> Sim<'f> {
                 v.unwrap_or(robot.limits.max_speed)
                     .min(robot.limits.max_speed)
             };
-            let plan = |to: &str| -> Result<(Vec<u32>, u32), SimError> {
+            let plan = |to: &str| -> Result<(Vec<DoorIdx>, ZoneIdx), SimError> {
                 let z = zone_index(floor, to)
                     .ok_or_else(|| err(format!("zone `{to}` is not on floor `{}`", floor.name)))?;
                 let doors = nav
-                    .door_path(s.start, z, s.profile.width_m)
+                    .door_path(floor, s.start, z, &s.profile)
                     .ok_or_else(|| {
                         err(format!(
                             "no route from the start to `{to}` through doors at least {} m wide",
@@ -689,7 +689,7 @@ impl<'f> Sim<'f> {
                 if mode == Mode::Arrived && !*arrived {
                     *arrived = true;
                     if let Some(z) = ctrl.target {
-                        let zr = &floor.zones[z as usize];
+                        let zr = &floor.zones[z.get()];
                         events.push(Event {
                             step,
                             t,

@@ -8,9 +8,9 @@ use poinav_roles::{AccessibilityStatus, CoordinationProtocol, RobotProfile, Role
 use crate::algorithm1::{self, Behaviour, Env, Mind, PendingClearance, Perception, Sink};
 use crate::events::Event;
 use crate::geometry::Obb;
+use crate::plan::Plan;
 use crate::poi_db::{PoiDb, Start};
 use crate::robot::{Brush, Limits, Robot, RobotState};
-use crate::route::NavGraph;
 use crate::sensor::{self, RANGE_M};
 use crate::world::World;
 pub(crate) use poinav_nav::polygon::rect;
@@ -154,7 +154,7 @@ pub(crate) fn robot(name: &str, pos: DVec2, heading: f64, priority: i64) -> Robo
 /// The run-wide things Algorithm 1 reads, built for `robots` on `floor` as a step builds them.
 pub(crate) struct View<'f> {
     pub floor: &'f Floor,
-    pub nav: NavGraph,
+    pub nav: Plan,
     pub world: World,
     pub db: PoiDb,
     pub robots: Vec<Robot>,
@@ -170,7 +170,7 @@ impl<'f> View<'f> {
         world.set_robots(&boxes);
         View {
             floor,
-            nav: NavGraph::new(floor),
+            nav: Plan::new(floor),
             world,
             db: PoiDb::new(floor, Start::Keep),
             robots,

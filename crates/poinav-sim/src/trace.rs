@@ -3,6 +3,7 @@
 //! events), written as JSON Lines with fixed decimals so equal runs give equal bytes.
 
 use glam::DVec2;
+use poinav_nav::ZoneIdx;
 
 use crate::controller::{Command, Mode};
 use crate::events::Event;
@@ -359,7 +360,7 @@ pub struct StepRecord {
     /// Controller mode.
     pub mode: Mode,
     /// Zone index.
-    pub zone: Option<u32>,
+    pub zone: Option<ZoneIdx>,
     /// Brush.
     pub brush: Brush,
 }
@@ -491,7 +492,7 @@ impl LineWriter {
         push_str(out, r.mode.label());
         out.put(",\"zone\":");
         match r.zone {
-            Some(z) => self.zones[z as usize].put_into(out),
+            Some(z) => self.zones[z.get()].put_into(out),
             None => out.put("null"),
         }
         out.put(",\"roles\":[");
@@ -572,7 +573,7 @@ mod tests {
         j.end_object();
         j.key("mode").str(r.mode.label());
         j.key("zone")
-            .opt_str(r.zone.map(|z| names.zones[z as usize].as_str()));
+            .opt_str(r.zone.map(|z| names.zones[z.get()].as_str()));
         j.key("roles").begin_array();
         for role in r.roles.roles() {
             j.str(role.label());

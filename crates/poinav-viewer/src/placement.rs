@@ -5,6 +5,7 @@
 //! drives into free space.
 
 use glam::DVec2;
+use poinav_nav::polygon::{contains, segment_distance, signed_area};
 use poinav_nav::Floor;
 use poinav_roles::RobotProfile;
 use poinav_sim::controller::{ControllerSpec, KeyScheme};
@@ -69,37 +70,6 @@ fn open_heading(segments: &[(DVec2, DVec2)], p: DVec2, width: f64, other: DVec2)
     best.1
 }
 
-fn inside(ring: &[DVec2], p: DVec2) -> bool {
-    let mut c = false;
-    let n = ring.len();
-    for i in 0..n {
-        let (a, b) = (ring[i], ring[(i + 1) % n]);
-        if (a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x) {
-            c = !c;
-        }
-    }
-    c
-}
-
-fn segment_distance(p: DVec2, a: DVec2, b: DVec2) -> f64 {
-    let ab = b - a;
-    let t = if ab.length_squared() > 0.0 {
-        ((p - a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    p.distance(a + ab * t)
-}
-
-fn ring_area(ring: &[DVec2]) -> f64 {
-    let n = ring.len();
-    (0..n)
-        .map(|i| ring[i].perp_dot(ring[(i + 1) % n]))
-        .sum::<f64>()
-        .abs()
-        / 2.0
-}
-
 /// A candidate start point and its room, metres.
 type Spot = (f64, DVec2);
 /// A wall or outline edge.
@@ -131,7 +101,7 @@ fn spots(floor: &Floor, zone: &poinav_nav::FloorZone) -> (Vec<Spot>, Vec<Segment
         floor
             .obstacles
             .iter()
-            .any(|o| o.rings.first().is_some_and(|r| inside(r, p)))
+            .any(|o| o.rings.first().is_some_and(|r| contains(r, p)))
     };
     let mut candidates: Vec<(f64, DVec2)> = Vec::new();
     let step = STEP_M.max((size.x * size.y / MAX_POINTS).sqrt());
@@ -139,7 +109,7 @@ fn spots(floor: &Floor, zone: &poinav_nav::FloorZone) -> (Vec<Spot>, Vec<Segment
     for j in 0..=ny {
         for i in 0..=nx {
             let p = lo + DVec2::new(i as f64, j as f64) * step;
-            if !inside(&zone.ring, p) || in_obstacle(p) {
+            if !contains(&zone.ring, p) || in_obstacle(p) {
                 continue;
             }
             let d = segments
@@ -174,7 +144,11 @@ pub fn default_robots(
     if zones.is_empty() {
         return Err(fail("it has no spaces (IfcSpace)"));
     }
-    zones.sort_by(|a, b| ring_area(&b.ring).total_cmp(&ring_area(&a.ring)));
+    zones.sort_by(|a, b| {
+        signed_area(&b.ring)
+            .abs()
+            .total_cmp(&signed_area(&a.ring).abs())
+    });
     let need = 0.5 * profile.width_m.hypot(profile.length_m) + 0.05;
     let mut first: Option<DVec2> = None;
     let mut second: Option<DVec2> = None;

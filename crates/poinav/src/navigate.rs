@@ -6,6 +6,7 @@ use std::process::ExitCode;
 
 use anyhow::Context;
 use poinav_ifc::Model;
+use poinav_nav::SpaceNames;
 use poinav_nav::{
     AuditOptions, Building, FurnitureMode, GridOptions, Nav2Options, NavError, NavOptions,
     Navigator, Place, Route,

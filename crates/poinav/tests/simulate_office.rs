@@ -10,29 +10,8 @@ use std::path::Path;
 use glam::DVec2;
 use poinav_geom::{floor_plans, PlanItemKind, PlanOptions};
 use poinav_ifc::Model;
+use poinav_nav::polygon::{boundary_distance, contains};
 use poinav_poi::{classify, RobotProfile, RuleSet};
-
-/// Distance from `p` to the nearest edge of `ring`.
-fn edge_distance(ring: &[DVec2], p: DVec2) -> f64 {
-    (0..ring.len())
-        .map(|i| {
-            let (a, b) = (ring[i], ring[(i + 1) % ring.len()]);
-            let t = ((p - a).dot(b - a) / (b - a).length_squared().max(1e-12)).clamp(0.0, 1.0);
-            (a + (b - a) * t).distance(p)
-        })
-        .fold(f64::INFINITY, f64::min)
-}
-
-fn inside(ring: &[DVec2], p: DVec2) -> bool {
-    let mut c = false;
-    for i in 0..ring.len() {
-        let (a, b) = (ring[i], ring[(i + 1) % ring.len()]);
-        if (a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x) {
-            c = !c;
-        }
-    }
-    c
-}
 
 #[test]
 fn doorway_scenario_on_office_a_agrees_with_the_geometric_status() {
@@ -58,12 +37,12 @@ fn doorway_scenario_on_office_a_agrees_with_the_geometric_status() {
                 let in_space = |p: DVec2| {
                     spaces
                         .iter()
-                        .any(|s| s.regions.iter().any(|r| inside(&r.outer, p)))
+                        .any(|s| s.regions.iter().any(|r| contains(&r.outer, p)))
                 };
                 // Room for the robot (half its diagonal is 0.53 m) clear of every obstacle.
                 let clear = |p: DVec2| {
                     plan.obstacles()
-                        .all(|r| !inside(&r.outer, p) && edge_distance(&r.outer, p) > 0.56)
+                        .all(|r| !contains(&r.outer, p) && boundary_distance(&r.outer, p) > 0.56)
                 };
                 [d.across, -d.across].into_iter().find_map(|side| {
                     [1.5, 1.3, 1.15]

@@ -5,9 +5,9 @@
 #![allow(dead_code)]
 
 use glam::DVec2;
+use poinav_nav::polygon::{contains, segment_distance};
 use poinav_nav::Floor;
 use poinav_poi::{RobotProfile, RuleSet};
-use poinav_sim::geometry::{point_in_ring, point_segment_distance};
 
 /// The storey of office-a.ifc the benchmarks use.
 pub const OFFICE_STOREY: &str = "Level 1";
@@ -83,19 +83,17 @@ pub fn free_spots(floor: &Floor, spacing: f64, clear: f64) -> Vec<DVec2> {
             let mut x = lo.x + clear;
             while x <= hi.x - clear {
                 let p = DVec2::new(x, y);
-                let inside = point_in_ring(p, &z.ring)
-                    && (0..n).all(|i| {
-                        point_segment_distance(p, z.ring[i], z.ring[(i + 1) % n]) >= clear
-                    });
+                let inside = contains(&z.ring, p)
+                    && (0..n).all(|i| segment_distance(p, z.ring[i], z.ring[(i + 1) % n]) >= clear);
                 let free = inside
                     && edges
                         .iter()
-                        .all(|&(a, b)| point_segment_distance(p, a, b) >= clear)
+                        .all(|&(a, b)| segment_distance(p, a, b) >= clear)
                     && !floor
                         .obstacles
                         .iter()
                         .flat_map(|o| &o.rings)
-                        .any(|r| point_in_ring(p, r));
+                        .any(|r| contains(r, p));
                 if free {
                     spots.push(p);
                 }

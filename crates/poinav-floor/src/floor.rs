@@ -6,7 +6,6 @@ use poinav_roles::{AccessibilityStatus, CoordinationProtocol, Role};
 use serde::{Deserialize, Serialize};
 
 use crate::polygon::PassageFrame;
-use crate::zone_index::ZoneIndex;
 
 /// What an obstacle is, for maps and sensors.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -62,7 +61,7 @@ pub struct FloorDoor {
     pub roles: Vec<Role>,
     /// The ids ([`FloorZone::id`]) of the spaces the door bounds, when the model says so (in
     /// IFC: `IfcRelSpaceBoundary`): one for an entrance, two for an interior door. `None`:
-    /// unknown, the sides come from geometry alone (see [`crate::graph::door_zones`]).
+    /// unknown, the sides come from geometry alone (see `poinav_nav::graph::door_zones`).
     #[serde(default)]
     pub spaces: Option<Vec<String>>,
     /// True for an opening without a door (a doorway; in IFC an `IfcOpeningElement` nothing
@@ -112,7 +111,7 @@ pub struct Floor {
 impl FloorDoor {
     /// The passage's frame from the ring alone: the width axis along the ring's longest edge,
     /// unless that extent is narrower than the clear width and the other is not. `None` without
-    /// a usable ring. [`Floor::door_frame`] also looks at the zones on either side.
+    /// a usable ring. `poinav_nav::DoorFrame::door_frame` also looks at the zones on either side.
     pub fn frame(&self) -> Option<PassageFrame> {
         let f = PassageFrame::of(&self.ring)?;
         let w = self.clear_width_m;
@@ -136,53 +135,6 @@ impl Floor {
             None => Some((*p, *p)),
             Some((lo, hi)) => Some((lo.min(*p), hi.max(*p))),
         })
-    }
-
-    /// The frame of door `k`'s passage: of the two orientations of its ring, the one with
-    /// more of the door's own spaces ([`FloorDoor::spaces`]) beyond its faces, else with zones
-    /// beyond more of its faces (a door joins two spaces); on a tie, [`FloorDoor::frame`].
-    /// The other orientation is a candidate only when it is at least the clear width wide.
-    pub fn door_frame(&self, k: usize) -> Option<PassageFrame> {
-        self.door_frame_with(k, &mut None)
-    }
-
-    /// [`Floor::door_frame`] with this floor's [`ZoneIndex`] (for many doors, build it once).
-    pub fn door_frame_in(&self, k: usize, zones: &ZoneIndex) -> Option<PassageFrame> {
-        self.door_frame_with(k, &mut Some(std::borrow::Cow::Borrowed(zones)))
-    }
-
-    /// [`Floor::door_frame`], the zone index built only when the zones are looked at.
-    fn door_frame_with(
-        &self,
-        k: usize,
-        zones: &mut Option<std::borrow::Cow<'_, ZoneIndex>>,
-    ) -> Option<PassageFrame> {
-        let d = self.doors.get(k)?;
-        let f = d.frame()?;
-        let g = f.swapped();
-        let w = d.clear_width_m;
-        if w.is_finite() && w > 0.0 && 2.0 * g.half_width < w - 1e-6 {
-            return Some(f);
-        }
-        let zones = zones.get_or_insert_with(|| std::borrow::Cow::Owned(ZoneIndex::new(self)));
-        let score = |f: &PassageFrame| {
-            let sides = crate::graph::frame_zones(self, zones, f);
-            let own = sides
-                .iter()
-                .flatten()
-                .filter(|&&z| {
-                    d.spaces
-                        .as_ref()
-                        .is_some_and(|s| s.contains(&self.zones[z].id))
-                })
-                .count();
-            (own, sides.iter().flatten().count())
-        };
-        if score(&g) > score(&f) {
-            Some(g)
-        } else {
-            Some(f)
-        }
     }
 
     /// The zone with this name (Name or LongName).

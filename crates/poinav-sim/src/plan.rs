@@ -1,0 +1,129 @@
+//! Routes for the simulator's robots, planned with poinav-nav's router: the door path through
+//! the floor's [`Topology`] (door sides decided once there) from the zone a robot starts in to
+//! its target zone, and the waypoints that line the robot up with every door it passes.
+
+use glam::DVec2;
+use poinav_nav::building::{door_status, passable};
+use poinav_nav::graph::zone_near;
+use poinav_nav::zone_index::ZoneIndex;
+use poinav_nav::{Building, DoorFrame, DoorIdx, Floor, Topology, ZoneIdx};
+use poinav_roles::RobotProfile;
+
+/// A door as the robots steer through it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DoorWay {
+    /// Centre.
+    pub center: DVec2,
+    /// Unit normal of the wall the door is in (the passage frame's normal, sign arbitrary);
+    /// `None` for a door without a usable ring.
+    pub axis: Option<DVec2>,
+    /// Clear width, metres.
+    pub width: f64,
+}
+
+/// A floor's doors and goals, and its topology for planning.
+#[derive(Debug, Clone)]
+pub struct Plan {
+    /// Doors, in floor order.
+    pub doors: Vec<DoorWay>,
+    /// Per zone, the point a route to it ends at: its node in the topology (an interior point).
+    pub goals: Vec<DVec2>,
+    topology: Topology,
+    zones: ZoneIndex,
+}
+
+impl Plan {
+    /// The plan of `floor`.
+    pub fn new(floor: &Floor) -> Plan {
+        // The topology reads zones and doors only.
+        let building = Building::single(Floor {
+            name: floor.name.clone(),
+            elevation_m: floor.elevation_m,
+            obstacles: Vec::new(),
+            doors: floor.doors.clone(),
+            zones: floor.zones.clone(),
+        });
+        let topology = Topology::build(&building);
+        let zones = ZoneIndex::new(floor);
+        let goals = topology.zone_nodes[0]
+            .iter()
+            .map(|&n| topology.nodes[n].position())
+            .collect();
+        let doors = floor
+            .doors
+            .iter()
+            .enumerate()
+            .map(|(k, d)| DoorWay {
+                center: d.center,
+                axis: floor.door_frame_in(k, &zones).map(|f| f.normal),
+                width: d.clear_width_m,
+            })
+            .collect();
+        Plan {
+            doors,
+            goals,
+            topology,
+            zones,
+        }
+    }
+
+    /// The zone holding `p`, else the nearest within 0.5 m ([`zone_near`]).
+    pub fn zone_at(&self, floor: &Floor, p: DVec2) -> Option<ZoneIdx> {
+        zone_near(floor, &self.zones, p).map(ZoneIdx::new)
+    }
+
+    /// Doors on the shortest way from `from` to zone `to`, in order
+    /// ([`Topology::door_path`]), through doors passable for `profile` by poinav-nav's status
+    /// rule ([`door_status`]; PENDING_VALIDATION passable) and at least its width wide.
+    pub fn door_path(
+        &self,
+        floor: &Floor,
+        from: DVec2,
+        to: ZoneIdx,
+        profile: &RobotProfile,
+    ) -> Option<Vec<DoorIdx>> {
+        let start = self.zone_at(floor, from)?;
+        let path = self.topology.door_path(0, start.get(), to.get(), |k| {
+            let d = &floor.doors[k];
+            passable(door_status(d, profile).0, true) && d.clear_width_m >= profile.width_m
+        })?;
+        Some(path.into_iter().map(DoorIdx::new).collect())
+    }
+
+    /// Waypoints from `from` through `doors` to zone `to`'s goal: before and after every door
+    /// a point `lead` metres out on its axis, so the robot crosses it straight; with each, the
+    /// clear width of the door it passes through (its centre and exit), `None` elsewhere.
+    pub fn waypoints(
+        &self,
+        from: DVec2,
+        doors: &[DoorIdx],
+        to: ZoneIdx,
+        lead: f64,
+    ) -> (Vec<DVec2>, Vec<Option<f64>>) {
+        let mut out = Vec::new();
+        let mut widths = Vec::new();
+        let mut prev = from;
+        for &d in doors {
+            let door = &self.doors[d.get()];
+            match door.axis {
+                Some(axis) => {
+                    let n = if (door.center - prev).dot(axis) >= 0.0 {
+                        axis
+                    } else {
+                        -axis
+                    };
+                    out.extend([door.center - n * lead, door.center, door.center + n * lead]);
+                    widths.extend([None, Some(door.width), Some(door.width)]);
+                }
+                None => {
+                    out.push(door.center);
+                    widths.push(Some(door.width));
+                }
+            }
+            prev = door.center;
+        }
+        out.push(self.goals[to.get()]);
+        widths.push(None);
+        (out, widths)
+    }
+}
