@@ -40,6 +40,7 @@ fn bench_second(
                     writer: &mut sink,
                     every,
                     name: "sink".into(),
+                    format: poinav_sim::TraceFormat::Jsonl,
                 });
                 let mut rec = Recorder::new(&sim, 61, Vec::new(), trace);
                 for k in 0..=60 {

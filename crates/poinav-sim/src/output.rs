@@ -86,6 +86,7 @@ pub fn run_into(
                 writer: &mut file,
                 every,
                 name: path.display().to_string(),
+                format: crate::TraceFormat::Jsonl,
             };
             let outcome = run_with(scenario, variant, floor, Some(out))?;
             file.commit().map_err(|e| io(&path, e))?;

@@ -75,6 +75,17 @@ impl Passages {
         }
     }
 
+    /// The crossings of `doors` (ascending, at most [`Passages::CAP`]; distances 0), as a
+    /// compact trace stores them.
+    pub(crate) fn of_doors(doors: &[u32]) -> Passages {
+        let mut p = Passages::default();
+        for (k, &d) in doors.iter().take(Self::CAP).enumerate() {
+            p.doors[k] = d;
+            p.n = k as u8 + 1;
+        }
+        p
+    }
+
     /// Door indices crossed, ascending.
     pub fn doors(&self) -> &[u32] {
         &self.doors[..self.n as usize]
