@@ -2,7 +2,7 @@
 //! (the latter still means something on a busy machine):
 //! `cargo run --release -p poinav-sim --example crowd_rtf -- ROBOTS SECONDS [TRACE_EVERY|0]
 //! [jsonl|bin]`. The trace is rendered (JSON Lines, or the compact records with `bin`) and
-//! written to `io::sink` (0: no trace).
+//! written to `io::sink` (0: no trace), or to the file `CROWD_TRACE` names (to compare runs).
 
 #[path = "../benches/common/mod.rs"]
 mod common;
@@ -40,7 +40,12 @@ fn main() {
     };
     let mut sim = Sim::new(&floor, &setups, opts).unwrap();
     let steps = (seconds as f64 / DT).round() as u64;
-    let mut sink = std::io::sink();
+    let mut sink: Box<dyn std::io::Write> = match std::env::var_os("CROWD_TRACE") {
+        Some(path) => Box::new(std::io::BufWriter::new(
+            std::fs::File::create(path).expect("CROWD_TRACE is a writable path"),
+        )),
+        None => Box::new(std::io::sink()),
+    };
     let trace = (every > 0).then(|| TraceOut {
         writer: &mut sink,
         every,
