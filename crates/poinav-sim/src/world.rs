@@ -200,6 +200,9 @@ pub struct World {
     /// Per robot box: the radius of a circle around it, a little larger than the box's own
     /// (see [`reach`]), for a cheap test before the exact ray test.
     reach: Vec<f64>,
+    /// Per robot box: [`Obb::radius`] (a `hypot`, asked for often, the same while the box's
+    /// size is).
+    radius: Vec<f64>,
     slack: f64,
 }
 
@@ -245,6 +248,7 @@ impl World {
             robot_next: Vec::new(),
             boxes: Vec::new(),
             reach: Vec::new(),
+            radius: Vec::new(),
             slack,
         };
         let mut pairs = Vec::new();
@@ -294,6 +298,8 @@ impl World {
         self.boxes.extend_from_slice(boxes);
         self.reach.clear();
         self.reach.extend(boxes.iter().map(reach));
+        self.radius.clear();
+        self.radius.extend(boxes.iter().map(Obb::radius));
         self.refresh_robots();
     }
 
@@ -314,7 +320,17 @@ impl World {
     /// are widened by the slack).
     pub fn update_robot(&mut self, i: usize, b: Obb) {
         self.reach[i] = reach(&b);
+        let old = &self.boxes[i];
+        if (old.hl, old.hw) != (b.hl, b.hw) {
+            self.radius[i] = b.radius();
+        }
         self.boxes[i] = b;
+    }
+
+    /// Robot `i`'s box's [`Obb::radius`].
+    #[inline]
+    pub fn robot_radius(&self, i: usize) -> f64 {
+        self.radius[i]
     }
 
     /// Robot `i`'s box.
