@@ -43,7 +43,7 @@ pub mod world;
 pub use error::SimError;
 pub use events::{Event, EventKind};
 pub use key_error::KeyError;
-pub use output::{run_into, write_outputs};
+pub use output::{run_into, run_into_as, write_outputs};
 pub use recorder::{Recorder, RobotFigures, TraceFormat, TraceOut};
 pub use run::{run, run_with, Outcome};
 pub use scenario::Scenario;
