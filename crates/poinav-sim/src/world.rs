@@ -196,6 +196,11 @@ pub struct World {
     robot_pairs: Vec<(u32, u32)>,
     /// Scratch space of the robots' grid rebuild.
     robot_next: Vec<u32>,
+    /// One bit per cell: the cell lists a static edge.
+    static_bits: Vec<u64>,
+    /// One bit per cell: the cell lists a static edge or a robot (rebuilt with the robots'
+    /// grid); a ray walks through the cells without one at the cost of a bit test.
+    busy: Vec<u64>,
     boxes: Vec<Obb>,
     /// Per robot box: the radius of a circle around it, a little larger than the box's own
     /// (see [`reach`]), for a cheap test before the exact ray test.
@@ -246,6 +251,8 @@ impl World {
             robots: Rows::default(),
             robot_pairs: Vec::new(),
             robot_next: Vec::new(),
+            static_bits: Vec::new(),
+            busy: Vec::new(),
             boxes: Vec::new(),
             reach: Vec::new(),
             radius: Vec::new(),
@@ -262,6 +269,11 @@ impl World {
         }
         w.statics = Rows::build(nx * ny, &pairs);
         w.robots = Rows::build(nx * ny, &[]);
+        w.static_bits = vec![0; (nx * ny).div_ceil(64)];
+        for &(c, _) in &pairs {
+            w.static_bits[c as usize >> 6] |= 1 << (c & 63);
+        }
+        w.busy = w.static_bits.clone();
         w
     }
 
@@ -313,6 +325,10 @@ impl World {
         }
         self.robots
             .rebuild(self.nx * self.ny, &pairs, &mut self.robot_next);
+        self.busy.copy_from_slice(&self.static_bits);
+        for &(c, _) in &pairs {
+            self.busy[c as usize >> 6] |= 1 << (c & 63);
+        }
         self.robot_pairs = pairs;
     }
 
@@ -480,40 +496,43 @@ impl World {
         };
         let mut c = cy * self.nx + cx;
         loop {
-            for &item in self.statics.cell(c) {
-                if item & PASSAGE != 0 {
-                    let s = &self.passages[(item & !PASSAGE) as usize];
-                    if let Some(t) = ray_segment(o, dir, s.a, s.b) {
-                        if t <= range {
-                            passages.add(s.owner, t);
+            // Cells listing nothing are passed by a bit test.
+            if self.busy[c >> 6] & (1 << (c & 63)) != 0 {
+                for &item in self.statics.cell(c) {
+                    if item & PASSAGE != 0 {
+                        let s = &self.passages[(item & !PASSAGE) as usize];
+                        if let Some(t) = ray_segment(o, dir, s.a, s.b) {
+                            if t <= range {
+                                passages.add(s.owner, t);
+                            }
+                        }
+                    } else {
+                        let s = &self.segs[item as usize];
+                        if let Some(t) = ray_segment(o, dir, s.a, s.b) {
+                            if t < best {
+                                best = t;
+                                target = Target::Obstacle(s.owner);
+                            }
                         }
                     }
-                } else {
-                    let s = &self.segs[item as usize];
-                    if let Some(t) = ray_segment(o, dir, s.a, s.b) {
+                }
+                for &r in self.robots.cell(c) {
+                    if Some(r) == skip {
+                        continue;
+                    }
+                    // The circle around the box first (`dir` is a unit vector): missed, or entered
+                    // no nearer than the best hit, the box cannot give a nearer hit.
+                    let b = &self.boxes[r as usize];
+                    let rel = b.c - o;
+                    let rad = self.reach[r as usize];
+                    if rel.perp_dot(dir).abs() > rad || rel.dot(dir) - rad >= best {
+                        continue;
+                    }
+                    if let Some(t) = b.ray(o, dir) {
                         if t < best {
                             best = t;
-                            target = Target::Obstacle(s.owner);
+                            target = Target::Robot(r);
                         }
-                    }
-                }
-            }
-            for &r in self.robots.cell(c) {
-                if Some(r) == skip {
-                    continue;
-                }
-                // The circle around the box first (`dir` is a unit vector): missed, or entered
-                // no nearer than the best hit, the box cannot give a nearer hit.
-                let b = &self.boxes[r as usize];
-                let rel = b.c - o;
-                let rad = self.reach[r as usize];
-                if rel.perp_dot(dir).abs() > rad || rel.dot(dir) - rad >= best {
-                    continue;
-                }
-                if let Some(t) = b.ray(o, dir) {
-                    if t < best {
-                        best = t;
-                        target = Target::Robot(r);
                     }
                 }
             }
