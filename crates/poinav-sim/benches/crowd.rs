@@ -4,7 +4,8 @@
 //! steps at 60 Hz) of a fresh simulation, every step recorded as `poinav simulate` records it
 //! (trace lines rendered, summary figures, plot samples; the bytes go to `io::sink`, so the
 //! disk is not measured), so the real-time factor is 1 s / time per iteration. Also the same
-//! second with the trace thinned to every 6th step (10 Hz) and without a trace. Goals
+//! second with the compact trace (`trace-bin`, [`poinav_sim::trace_bin`]), with the trace
+//! thinned to every 6th step (10 Hz) and without a trace. Goals
 //! (issue 15): >= 250x real time for 100 robots, >= 50x for 1000, >= 5x for 10,000.
 //!
 //! Run with `cargo bench -p poinav-sim --bench crowd` (about five minutes on two cores).
@@ -15,7 +16,7 @@ use std::time::Duration;
 
 use criterion::{criterion_group, criterion_main, BatchSize, BenchmarkGroup, Criterion};
 use poinav_nav::Floor;
-use poinav_sim::{Recorder, RobotSetup, Sim, SimOptions, TraceOut, DT};
+use poinav_sim::{Recorder, RobotSetup, Sim, SimOptions, TraceFormat, TraceOut, DT};
 
 /// One simulated second per iteration, recorded with the trace kept every `every` steps.
 fn bench_second(
@@ -24,6 +25,7 @@ fn bench_second(
     floor: &Floor,
     setups: &[RobotSetup],
     every: Option<u64>,
+    format: TraceFormat,
 ) {
     let opts = SimOptions {
         record: false,
@@ -40,6 +42,7 @@ fn bench_second(
                     writer: &mut sink,
                     every,
                     name: "sink".into(),
+                    format,
                 });
                 let mut rec = Recorder::new(&sim, 61, Vec::new(), trace);
                 for k in 0..=60 {
@@ -62,10 +65,11 @@ fn crowd(c: &mut Criterion) {
         .measurement_time(Duration::from_secs(5));
     for n in [100usize, 1000, 10_000] {
         let (floor, setups) = common::open_floor(n);
-        for (label, every) in [
-            ("trace", Some(1)),
-            ("trace-every-6", Some(6)),
-            ("no-trace", None),
+        for (label, every, format) in [
+            ("trace", Some(1), TraceFormat::Jsonl),
+            ("trace-bin", Some(1), TraceFormat::Bin),
+            ("trace-every-6", Some(6), TraceFormat::Jsonl),
+            ("no-trace", None, TraceFormat::Jsonl),
         ] {
             bench_second(
                 &mut group,
@@ -73,6 +77,7 @@ fn crowd(c: &mut Criterion) {
                 &floor,
                 &setups,
                 every,
+                format,
             );
         }
     }

@@ -691,7 +691,7 @@ pub fn perceive(
     // C-1.
     mind.tracked.retain(|&r| {
         env.robots[r as usize].state.pos.distance(pos)
-            <= RANGE_M + env.world.robot(r as usize).radius()
+            <= RANGE_M + env.world.robot_radius(r as usize)
     });
     mind.tracked.sort_unstable();
     let nearest = mind

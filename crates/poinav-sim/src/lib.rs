@@ -37,13 +37,14 @@ pub mod step;
 #[cfg(test)]
 mod test_floor;
 pub mod trace;
+pub mod trace_bin;
 pub mod world;
 
 pub use error::SimError;
 pub use events::{Event, EventKind};
 pub use key_error::KeyError;
-pub use output::{run_into, write_outputs};
-pub use recorder::{Recorder, RobotFigures, TraceOut};
+pub use output::{run_into, run_into_as, write_outputs};
+pub use recorder::{Recorder, RobotFigures, TraceFormat, TraceOut};
 pub use run::{run, run_with, Outcome};
 pub use scenario::Scenario;
 pub use step::{RobotSetup, Sim, SimOptions, DT};

@@ -8,7 +8,7 @@ use poinav_nav::Floor;
 
 use crate::error::SimError;
 use crate::plot;
-use crate::recorder::TraceOut;
+use crate::recorder::{TraceFormat, TraceOut};
 use crate::run::{run_with, Outcome};
 use crate::scenario::Scenario;
 use poinav_io::AtomicFile;
@@ -41,6 +41,18 @@ pub fn write_outputs(
 
 /// The trace's file name in an output folder.
 pub const TRACE: &str = "trace.jsonl";
+
+/// The compact trace's file name in an output folder ([`crate::trace_bin`]).
+pub const TRACE_BIN: &str = "trace.bin";
+
+/// Removes `path` if it exists (a trace an earlier run left).
+fn remove_stale(path: &Path) -> Result<(), SimError> {
+    match std::fs::remove_file(path) {
+        Ok(()) => Ok(()),
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(()),
+        Err(e) => Err(io(path, e)),
+    }
+}
 
 fn write_summary_and_plots(
     dir: &Path,
@@ -76,8 +88,33 @@ pub fn run_into(
     floor: &Floor,
     trace_every: Option<u64>,
 ) -> Result<(Outcome, Vec<PathBuf>), SimError> {
+    run_into_as(
+        dir,
+        scenario,
+        variant,
+        floor,
+        trace_every,
+        TraceFormat::Jsonl,
+    )
+}
+
+/// [`run_into`] writing the trace in `format`: `DIR/trace.jsonl` or `DIR/trace.bin`
+/// ([`TRACE_BIN`]); a trace of the other format left by an earlier run is removed.
+pub fn run_into_as(
+    dir: &Path,
+    scenario: &Scenario,
+    variant: Option<&str>,
+    floor: &Floor,
+    trace_every: Option<u64>,
+    format: TraceFormat,
+) -> Result<(Outcome, Vec<PathBuf>), SimError> {
     std::fs::create_dir_all(dir).map_err(|e| io(dir, e))?;
-    let path = dir.join(TRACE);
+    let (name, other) = match format {
+        TraceFormat::Jsonl => (TRACE, TRACE_BIN),
+        TraceFormat::Bin => (TRACE_BIN, TRACE),
+    };
+    remove_stale(&dir.join(other))?;
+    let path = dir.join(name);
     let mut written = Vec::new();
     let outcome = match trace_every {
         Some(every) => {
@@ -86,6 +123,7 @@ pub fn run_into(
                 writer: &mut file,
                 every,
                 name: path.display().to_string(),
+                format,
             };
             let outcome = run_with(scenario, variant, floor, Some(out))?;
             file.commit().map_err(|e| io(&path, e))?;
@@ -94,11 +132,7 @@ pub fn run_into(
         }
         None => {
             let outcome = run_with(scenario, variant, floor, None)?;
-            match std::fs::remove_file(&path) {
-                Ok(()) => {}
-                Err(e) if e.kind() == std::io::ErrorKind::NotFound => {}
-                Err(e) => return Err(io(&path, e)),
-            }
+            remove_stale(&path)?;
             outcome
         }
     };

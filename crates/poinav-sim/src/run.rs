@@ -119,6 +119,7 @@ pub fn run(scenario: &Scenario, variant: Option<&str>, floor: &Floor) -> Result<
         writer: &mut buf,
         every: 1,
         name: "trace".into(),
+        format: crate::TraceFormat::Jsonl,
     };
     let mut outcome = run_with(scenario, variant, floor, Some(out))?;
     outcome.trace = Some(buf);

@@ -43,10 +43,12 @@ pub fn sense(world: &World, me: usize, pos: DVec2, heading: f64, range: f64) -> 
 }
 
 /// Casts the five rays of robot `me` from `pos` along `dirs` ([`directions`] of its heading,
-/// kept while the heading stays the same).
+/// kept while the heading stays the same); the origin's cell is found once for the five.
 pub fn sense_along(world: &World, me: usize, pos: DVec2, dirs: [DVec2; 5], range: f64) -> Reading {
-    Reading {
-        rays: dirs.map(|d| world.cast(pos, d, range, Some(me as u32))),
-        dirs,
-    }
+    let skip = Some(me as u32);
+    let rays = match world.origin(pos) {
+        Some(origin) => dirs.map(|d| world.cast_from(&origin, d, range, skip)),
+        None => dirs.map(|d| world.cast(pos, d, range, skip)),
+    };
+    Reading { rays, dirs }
 }

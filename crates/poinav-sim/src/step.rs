@@ -772,7 +772,7 @@ impl<'f> Sim<'f> {
             &self.world,
             i,
             start,
-            v.abs() * dt + start.radius() * omega.abs() * dt,
+            v.abs() * dt + self.world.robot_radius(i) * omega.abs() * dt,
             sc,
         );
         let edges = &sc.edges;

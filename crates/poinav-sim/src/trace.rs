@@ -468,10 +468,26 @@ impl LineWriter {
 
     /// Appends the line of `r` and its `events` (no newline) to `out`.
     pub fn line_into(&self, out: &mut Vec<u8>, r: &StepRecord, dt: f64, events: &[&Event]) {
+        self.line_with(out, r, r.step as f64 * dt, |out| {
+            if !events.is_empty() {
+                out.put(&events_json(events));
+            }
+        });
+    }
+
+    /// Appends the line of `r` at time `t` (no newline) to `out`, the text inside its events
+    /// array written by `events` (what [`events_json`] gives).
+    pub(crate) fn line_with(
+        &self,
+        out: &mut Vec<u8>,
+        r: &StepRecord,
+        t: f64,
+        events: impl FnOnce(&mut Vec<u8>),
+    ) {
         out.put("{\"step\":");
         push_digits(out, r.step, 1);
         out.put(",\"t\":");
-        push_fixed(out, r.step as f64 * dt, 6);
+        push_fixed(out, t, 6);
         out.put(",\"robot\":");
         self.robots[r.robot as usize].put_into(out);
         out.put(",\"x\":");
@@ -529,22 +545,24 @@ impl LineWriter {
             out.put_ascii(b"}");
         }
         out.put("],\"events\":[");
-        if !events.is_empty() {
-            // Inside the array: the events as objects, written value by value.
-            let mut j = Json {
-                stack: vec![false],
-                ..Json::default()
-            };
-            for e in events {
-                j.begin_object();
-                j.key("kind").str(e.kind.tag());
-                e.kind.write_fields(&mut j);
-                j.end_object();
-            }
-            out.put(&j.out);
-        }
+        events(out);
         out.put("]}");
     }
+}
+
+/// The text inside a trace line's events array: `events` as objects, written value by value.
+pub(crate) fn events_json(events: &[&Event]) -> String {
+    let mut j = Json {
+        stack: vec![false],
+        ..Json::default()
+    };
+    for e in events {
+        j.begin_object();
+        j.key("kind").str(e.kind.tag());
+        e.kind.write_fields(&mut j);
+        j.end_object();
+    }
+    j.out
 }
 
 #[cfg(test)]

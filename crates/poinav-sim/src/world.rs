@@ -75,6 +75,17 @@ impl Passages {
         }
     }
 
+    /// The crossings of `doors` (ascending, at most [`Passages::CAP`]; distances 0), as a
+    /// compact trace stores them.
+    pub(crate) fn of_doors(doors: &[u32]) -> Passages {
+        let mut p = Passages::default();
+        for (k, &d) in doors.iter().take(Self::CAP).enumerate() {
+            p.doors[k] = d;
+            p.n = k as u8 + 1;
+        }
+        p
+    }
+
     /// Door indices crossed, ascending.
     pub fn doors(&self) -> &[u32] {
         &self.doors[..self.n as usize]
@@ -89,6 +100,18 @@ impl Passages {
     pub fn is_empty(&self) -> bool {
         self.n == 0
     }
+}
+
+/// A ray origin inside the grid: its cell and the cell's borders (see [`World::origin`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Origin {
+    o: DVec2,
+    cx: usize,
+    cy: usize,
+    /// The cell's lower borders.
+    low: DVec2,
+    /// The cell's upper borders.
+    high: DVec2,
 }
 
 /// One ray's result.
@@ -161,6 +184,8 @@ impl Rows {
 #[derive(Debug, Clone)]
 pub struct World {
     lo: DVec2,
+    /// The grid's far corner: `lo` + (`nx`, `ny`) cells.
+    hi: DVec2,
     cell: f64,
     nx: usize,
     ny: usize,
@@ -171,10 +196,18 @@ pub struct World {
     robot_pairs: Vec<(u32, u32)>,
     /// Scratch space of the robots' grid rebuild.
     robot_next: Vec<u32>,
+    /// One bit per cell: the cell lists a static edge.
+    static_bits: Vec<u64>,
+    /// One bit per cell: the cell lists a static edge or a robot (rebuilt with the robots'
+    /// grid); a ray walks through the cells without one at the cost of a bit test.
+    busy: Vec<u64>,
     boxes: Vec<Obb>,
     /// Per robot box: the radius of a circle around it, a little larger than the box's own
     /// (see [`reach`]), for a cheap test before the exact ray test.
     reach: Vec<f64>,
+    /// Per robot box: [`Obb::radius`] (a `hypot`, asked for often, the same while the box's
+    /// size is).
+    radius: Vec<f64>,
     slack: f64,
 }
 
@@ -208,6 +241,7 @@ impl World {
         let ny = (((hi.y - lo.y) / cell).ceil() as usize).max(1);
         let mut w = World {
             lo,
+            hi: lo + DVec2::new(nx as f64, ny as f64) * cell,
             cell,
             nx,
             ny,
@@ -217,8 +251,11 @@ impl World {
             robots: Rows::default(),
             robot_pairs: Vec::new(),
             robot_next: Vec::new(),
+            static_bits: Vec::new(),
+            busy: Vec::new(),
             boxes: Vec::new(),
             reach: Vec::new(),
+            radius: Vec::new(),
             slack,
         };
         let mut pairs = Vec::new();
@@ -232,6 +269,11 @@ impl World {
         }
         w.statics = Rows::build(nx * ny, &pairs);
         w.robots = Rows::build(nx * ny, &[]);
+        w.static_bits = vec![0; (nx * ny).div_ceil(64)];
+        for &(c, _) in &pairs {
+            w.static_bits[c as usize >> 6] |= 1 << (c & 63);
+        }
+        w.busy = w.static_bits.clone();
         w
     }
 
@@ -242,10 +284,13 @@ impl World {
 
     fn cell_of(&self, p: DVec2) -> (usize, usize) {
         let q = (p - self.lo) / self.cell;
+        // Clamped to the grid, then truncated (the floor here): negatives and NaN become cell
+        // 0, beyond the grid the last cell. (Clamping first leaves a conversion without
+        // saturation to do: the truncation and `min` of before gave the same cells.)
+        let last = |n: usize| (n - 1) as u32 as f64;
         (
-            // Truncation is the floor here: negatives (and NaN) become cell 0 either way.
-            (q.x.max(0.0) as usize).min(self.nx - 1),
-            (q.y.max(0.0) as usize).min(self.ny - 1),
+            q.x.max(0.0).min(last(self.nx)) as i64 as usize,
+            q.y.max(0.0).min(last(self.ny)) as i64 as usize,
         )
     }
 
@@ -265,6 +310,8 @@ impl World {
         self.boxes.extend_from_slice(boxes);
         self.reach.clear();
         self.reach.extend(boxes.iter().map(reach));
+        self.radius.clear();
+        self.radius.extend(boxes.iter().map(Obb::radius));
         self.refresh_robots();
     }
 
@@ -278,6 +325,10 @@ impl World {
         }
         self.robots
             .rebuild(self.nx * self.ny, &pairs, &mut self.robot_next);
+        self.busy.copy_from_slice(&self.static_bits);
+        for &(c, _) in &pairs {
+            self.busy[c as usize >> 6] |= 1 << (c & 63);
+        }
         self.robot_pairs = pairs;
     }
 
@@ -285,7 +336,17 @@ impl World {
     /// are widened by the slack).
     pub fn update_robot(&mut self, i: usize, b: Obb) {
         self.reach[i] = reach(&b);
+        let old = &self.boxes[i];
+        if (old.hl, old.hw) != (b.hl, b.hw) {
+            self.radius[i] = b.radius();
+        }
         self.boxes[i] = b;
+    }
+
+    /// Robot `i`'s box's [`Obb::radius`].
+    #[inline]
+    pub fn robot_radius(&self, i: usize) -> f64 {
+        self.radius[i]
     }
 
     /// Robot `i`'s box.
@@ -293,97 +354,185 @@ impl World {
         &self.boxes[i]
     }
 
+    /// The cell of a ray origin inside the grid and its borders, shared by the rays cast
+    /// from it ([`World::cast_from`]); `None` outside the grid.
+    pub fn origin(&self, o: DVec2) -> Option<Origin> {
+        let (glo, ghi) = (self.lo, self.hi);
+        if !(o.x >= glo.x && o.x <= ghi.x && o.y >= glo.y && o.y <= ghi.y) {
+            return None;
+        }
+        let (cx, cy) = self.cell_of(o);
+        // Cell borders as the walk computes them: low + (index + 0 or 1) x cell.
+        let border = |lo: f64, c: usize, up: f64| lo + (c as u32 as f64 + up) * self.cell;
+        Some(Origin {
+            o,
+            cx,
+            cy,
+            low: DVec2::new(border(glo.x, cx, 0.0), border(glo.y, cy, 0.0)),
+            high: DVec2::new(border(glo.x, cx, 1.0), border(glo.y, cy, 1.0)),
+        })
+    }
+
     /// Casts a ray from `o` along unit `dir` up to `range`, ignoring robot `skip`.
+    ///
+    /// The cells are walked as before this was tuned (the same crossing times, computed by the
+    /// same expressions), with the cell index stepped in place and the steps left to the
+    /// grid's edge counted down instead of bounds tests; a ray from inside the grid (every
+    /// robot's) is not clipped to it: it stops at the grid's edge or its range, and the grid's
+    /// outer cells (a margin of 1 m around the floor) hold nothing a ray could hit.
     pub fn cast(&self, o: DVec2, dir: DVec2, range: f64, skip: Option<u32>) -> RayHit {
-        let mut best = range;
-        let mut target = Target::None;
-        let mut passages = Passages::default();
+        if let Some(origin) = self.origin(o) {
+            return self.cast_from(&origin, dir, range, skip);
+        }
+        let miss = RayHit {
+            dist: range,
+            target: Target::None,
+            passages: Passages::default(),
+        };
+        let (glo, ghi) = (self.lo, self.hi);
         // Clip the ray to the grid.
-        let glo = self.lo;
-        let ghi = self.lo + DVec2::new(self.nx as f64, self.ny as f64) * self.cell;
         let (mut t_in, mut t_out) = (0.0f64, range);
-        for k in 0..2 {
-            if dir[k].abs() < 1e-300 {
-                if o[k] < glo[k] || o[k] > ghi[k] {
-                    return RayHit {
-                        dist: range,
-                        target,
-                        passages,
-                    };
+        for (o, dir, glo, ghi) in [(o.x, dir.x, glo.x, ghi.x), (o.y, dir.y, glo.y, ghi.y)] {
+            if dir.abs() < 1e-300 {
+                if o < glo || o > ghi {
+                    return miss;
                 }
             } else {
-                let a = (glo[k] - o[k]) / dir[k];
-                let b = (ghi[k] - o[k]) / dir[k];
+                let a = (glo - o) / dir;
+                let b = (ghi - o) / dir;
                 t_in = t_in.max(a.min(b));
                 t_out = t_out.min(a.max(b));
             }
         }
         if t_in > t_out {
-            return RayHit {
-                dist: range,
-                target,
-                passages,
-            };
+            return miss;
         }
-        let start = o + dir * t_in;
-        let (mut cx, mut cy) = self.cell_of(start);
-        let step_x: isize = if dir.x > 0.0 { 1 } else { -1 };
-        let step_y: isize = if dir.y > 0.0 { 1 } else { -1 };
-        let next = |c: usize, k: usize, step: isize| -> f64 {
-            if dir[k].abs() < 1e-300 {
-                return f64::INFINITY;
-            }
-            let edge = self.lo[k] + (c as f64 + if step > 0 { 1.0 } else { 0.0 }) * self.cell;
-            (edge - o[k]) / dir[k]
+        let (cx, cy) = self.cell_of(o + dir * t_in);
+        let border = |lo: f64, c: usize, up: bool| {
+            lo + (c as u32 as f64 + if up { 1.0 } else { 0.0 }) * self.cell
         };
-        let mut t_max_x = next(cx, 0, step_x);
-        let mut t_max_y = next(cy, 1, step_y);
-        let dt_x = if dir.x.abs() < 1e-300 {
+        let edge = DVec2::new(
+            border(glo.x, cx, dir.x > 0.0),
+            border(glo.y, cy, dir.y > 0.0),
+        );
+        self.walk(o, dir, range, skip, (cx, cy), edge, t_out)
+    }
+
+    /// [`World::cast`] from an [`World::origin`]: the same hit.
+    #[inline]
+    pub fn cast_from(&self, origin: &Origin, dir: DVec2, range: f64, skip: Option<u32>) -> RayHit {
+        let edge = DVec2::new(
+            if dir.x > 0.0 {
+                origin.high.x
+            } else {
+                origin.low.x
+            },
+            if dir.y > 0.0 {
+                origin.high.y
+            } else {
+                origin.low.y
+            },
+        );
+        self.walk(
+            origin.o,
+            dir,
+            range,
+            skip,
+            (origin.cx, origin.cy),
+            edge,
+            range,
+        )
+    }
+
+    /// Walks the cells from `(cx, cy)` (whose borders ahead are `edge`) until a hit, `t_out`
+    /// or the grid's edge.
+    #[allow(clippy::too_many_arguments)]
+    fn walk(
+        &self,
+        o: DVec2,
+        dir: DVec2,
+        range: f64,
+        skip: Option<u32>,
+        (cx, cy): (usize, usize),
+        edge: DVec2,
+        t_out: f64,
+    ) -> RayHit {
+        let mut best = range;
+        let mut target = Target::None;
+        let mut passages = Passages::default();
+        let (flat_x, flat_y) = (dir.x.abs() < 1e-300, dir.y.abs() < 1e-300);
+        let cell = self.cell;
+        let (up_x, up_y) = (dir.x > 0.0, dir.y > 0.0);
+        let mut t_max_x = if flat_x {
             f64::INFINITY
         } else {
-            self.cell / dir.x.abs()
+            (edge.x - o.x) / dir.x
         };
-        let dt_y = if dir.y.abs() < 1e-300 {
+        let mut t_max_y = if flat_y {
             f64::INFINITY
         } else {
-            self.cell / dir.y.abs()
+            (edge.y - o.y) / dir.y
         };
+        let dt_x = if flat_x {
+            f64::INFINITY
+        } else {
+            cell / dir.x.abs()
+        };
+        let dt_y = if flat_y {
+            f64::INFINITY
+        } else {
+            cell / dir.y.abs()
+        };
+        // Steps left to the grid's edge, and the cell index's change per step.
+        let (mut left_x, step_x) = if up_x {
+            (self.nx - 1 - cx, 1usize)
+        } else {
+            (cx, 1usize.wrapping_neg())
+        };
+        let (mut left_y, step_y) = if up_y {
+            (self.ny - 1 - cy, self.nx)
+        } else {
+            (cy, self.nx.wrapping_neg())
+        };
+        let mut c = cy * self.nx + cx;
         loop {
-            let c = cy * self.nx + cx;
-            for &item in self.statics.cell(c) {
-                if item & PASSAGE != 0 {
-                    let s = &self.passages[(item & !PASSAGE) as usize];
-                    if let Some(t) = ray_segment(o, dir, s.a, s.b) {
-                        if t <= range {
-                            passages.add(s.owner, t);
+            // Cells listing nothing are passed by a bit test.
+            if self.busy[c >> 6] & (1 << (c & 63)) != 0 {
+                for &item in self.statics.cell(c) {
+                    if item & PASSAGE != 0 {
+                        let s = &self.passages[(item & !PASSAGE) as usize];
+                        if let Some(t) = ray_segment(o, dir, s.a, s.b) {
+                            if t <= range {
+                                passages.add(s.owner, t);
+                            }
+                        }
+                    } else {
+                        let s = &self.segs[item as usize];
+                        if let Some(t) = ray_segment(o, dir, s.a, s.b) {
+                            if t < best {
+                                best = t;
+                                target = Target::Obstacle(s.owner);
+                            }
                         }
                     }
-                } else {
-                    let s = &self.segs[item as usize];
-                    if let Some(t) = ray_segment(o, dir, s.a, s.b) {
+                }
+                for &r in self.robots.cell(c) {
+                    if Some(r) == skip {
+                        continue;
+                    }
+                    // The circle around the box first (`dir` is a unit vector): missed, or entered
+                    // no nearer than the best hit, the box cannot give a nearer hit.
+                    let b = &self.boxes[r as usize];
+                    let rel = b.c - o;
+                    let rad = self.reach[r as usize];
+                    if rel.perp_dot(dir).abs() > rad || rel.dot(dir) - rad >= best {
+                        continue;
+                    }
+                    if let Some(t) = b.ray(o, dir) {
                         if t < best {
                             best = t;
-                            target = Target::Obstacle(s.owner);
+                            target = Target::Robot(r);
                         }
-                    }
-                }
-            }
-            for &r in self.robots.cell(c) {
-                if Some(r) == skip {
-                    continue;
-                }
-                // The circle around the box first (`dir` is a unit vector): missed, or entered
-                // no nearer than the best hit, the box cannot give a nearer hit.
-                let b = &self.boxes[r as usize];
-                let rel = b.c - o;
-                let rad = self.reach[r as usize];
-                if rel.perp_dot(dir).abs() > rad || rel.dot(dir) - rad >= best {
-                    continue;
-                }
-                if let Some(t) = b.ray(o, dir) {
-                    if t < best {
-                        best = t;
-                        target = Target::Robot(r);
                     }
                 }
             }
@@ -392,18 +541,18 @@ impl World {
                 break;
             }
             if t_max_x < t_max_y {
-                let nx = cx as isize + step_x;
-                if nx < 0 || nx >= self.nx as isize {
+                if left_x == 0 {
                     break;
                 }
-                cx = nx as usize;
+                left_x -= 1;
+                c = c.wrapping_add(step_x);
                 t_max_x += dt_x;
             } else {
-                let ny = cy as isize + step_y;
-                if ny < 0 || ny >= self.ny as isize {
+                if left_y == 0 {
                     break;
                 }
-                cy = ny as usize;
+                left_y -= 1;
+                c = c.wrapping_add(step_y);
                 t_max_y += dt_y;
             }
         }
@@ -584,6 +733,26 @@ mod tests {
                 assert_eq!(a.target, b.target);
             }
         }
+        // From outside the grid (clipped to it), and from its inside through a shared origin.
+        let (mut outside, mut shared) = (0, 0);
+        for _ in 0..5_000 {
+            let o = DVec2::new(rng(&mut seed) * 40.0 - 10.0, rng(&mut seed) * 30.0 - 9.0);
+            let dir = DVec2::from_angle(rng(&mut seed) * std::f64::consts::TAU);
+            let a = world.cast(o, dir, 12.0, None);
+            let b = world.cast_brute_force(o, dir, 12.0, None);
+            assert!((a.dist - b.dist).abs() < 1e-12, "{o} {dir} {a:?} {b:?}");
+            match world.origin(o) {
+                None => outside += 1,
+                Some(origin) => {
+                    assert_eq!(world.cast_from(&origin, dir, 12.0, None), a);
+                    shared += 1;
+                }
+            }
+        }
+        assert!(
+            outside > 1000 && shared > 1000,
+            "{outside} outside, {shared} inside"
+        );
         // Axis-parallel rays along cell borders.
         for k in 0..200 {
             let o = DVec2::new(k as f64 * 0.1, 0.7 * (k % 17) as f64);

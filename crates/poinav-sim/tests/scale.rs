@@ -95,6 +95,7 @@ fn a_thinned_trace_keeps_every_nth_step_of_the_full_one() {
         writer: &mut thin,
         every: 7,
         name: "thin".into(),
+        format: poinav_sim::TraceFormat::Jsonl,
     };
     let thinned = run_with(&s, None, &floor, Some(out)).unwrap();
     let text = String::from_utf8(full.trace.clone().unwrap()).unwrap();

@@ -1,6 +1,6 @@
 //! `poinav simulate SCENARIO -o DIR`: runs every variant (or one) of a scenario file, writes
-//! the trace as it goes (thinned with `--trace-every N`, none with `--no-trace`), then summary
-//! and plots; optionally writes what the robots found back into the IFC.
+//! the trace as it goes (thinned with `--trace-every N`, none with `--no-trace`, compact with
+//! `--trace-format bin`), then summary and plots; optionally writes what the robots found back into the IFC.
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -33,10 +33,30 @@ pub struct Args {
     /// Write no trace.jsonl (summary, expectations and plots are the same as with one).
     #[arg(long, conflicts_with = "trace_every")]
     no_trace: bool,
+    /// The trace's format: `jsonl` (trace.jsonl, what every reader takes) or `bin`
+    /// (trace.bin: fixed-size binary records, about a quarter of the bytes and a small part of
+    /// the time to write; `poinav_sim::trace_bin::read_lines` gives back the JSON Lines; the
+    /// viewer's playback, `--mcap` and the Python package read trace.jsonl only).
+    #[arg(
+        long,
+        value_name = "FORMAT",
+        default_value = "jsonl",
+        conflicts_with = "no_trace"
+    )]
+    trace_format: TraceFormatArg,
     /// Also write a ROS 2 recording (MCAP: scans, odometry, TF, map, POI markers and events)
     /// of the trace's steps here (with several variants: `NAME.<variant>.mcap`).
     #[arg(long, value_name = "FILE", conflicts_with = "no_trace")]
     mcap: Option<PathBuf>,
+}
+
+/// `--trace-format`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum TraceFormatArg {
+    /// JSON Lines (trace.jsonl).
+    Jsonl,
+    /// Compact binary records (trace.bin).
+    Bin,
 }
 
 /// Writes the ROS 2 recording of `run` (its trace.jsonl, floor and Nav2 map) to `path`.
@@ -82,12 +102,39 @@ pub fn run_scenario(
     run_scenario_with(scenario, only, out, Some(1))
 }
 
+/// [`run_scenario_with`] writing the trace in `format`.
+pub fn run_scenario_as(
+    scenario: &Scenario,
+    only: Option<&str>,
+    out: &Path,
+    trace_every: Option<u64>,
+    format: poinav_sim::TraceFormat,
+) -> anyhow::Result<Vec<VariantRun>> {
+    run_variants(scenario, only, out, trace_every, format)
+}
+
 /// [`run_scenario`] with the trace thinned to every `trace_every`-th step, or none.
 pub fn run_scenario_with(
     scenario: &Scenario,
     only: Option<&str>,
     out: &Path,
     trace_every: Option<u64>,
+) -> anyhow::Result<Vec<VariantRun>> {
+    run_variants(
+        scenario,
+        only,
+        out,
+        trace_every,
+        poinav_sim::TraceFormat::Jsonl,
+    )
+}
+
+fn run_variants(
+    scenario: &Scenario,
+    only: Option<&str>,
+    out: &Path,
+    trace_every: Option<u64>,
+    format: poinav_sim::TraceFormat,
 ) -> anyhow::Result<Vec<VariantRun>> {
     let names: Vec<Option<String>> = match only {
         Some(v) => vec![Some(v.to_string())],
@@ -107,12 +154,13 @@ pub fn run_scenario_with(
             None => out.to_path_buf(),
         };
         crate::progress::stage("simulation");
-        let (outcome, _) = poinav_sim::run_into(
+        let (outcome, _) = poinav_sim::run_into_as(
             &dir,
             scenario,
             variant.as_deref(),
             building.floor(),
             trace_every,
+            format,
         )?;
         crate::progress::end();
         runs.push(VariantRun {
@@ -150,11 +198,19 @@ pub fn report(name: &str, runs: &[VariantRun]) -> bool {
 pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     let scenario = Scenario::load(&args.scenario)?;
     let trace_every = (!args.no_trace).then_some(args.trace_every);
-    let runs = run_scenario_with(
+    let format = match args.trace_format {
+        TraceFormatArg::Jsonl => poinav_sim::TraceFormat::Jsonl,
+        TraceFormatArg::Bin => poinav_sim::TraceFormat::Bin,
+    };
+    if args.mcap.is_some() && format == poinav_sim::TraceFormat::Bin {
+        anyhow::bail!("--mcap records from trace.jsonl: leave out --trace-format bin");
+    }
+    let runs = run_scenario_as(
         &scenario,
         args.variant.as_deref(),
         &args.output,
         trace_every,
+        format,
     )?;
     let passed = report(&scenario.name, &runs);
     if let Some(target) = &args.write_back {

@@ -2,7 +2,8 @@
 //! decodes every message with `mcap` + `mcap-ros2-support` and with `rosbags`, and compares
 //! topics, counts, scans, odometry and the occupancy grid with the run's trace and the Nav2
 //! map `poinav_nav::write_bundle` writes for the same storey and profile. The same run
-//! twice gives the same bytes. `poinav serve --record` writes the live session when stopped.
+//! twice gives the same bytes; `--trace-format bin`'s trace reads back as the same lines.
+//! `poinav serve --record` writes the live session when stopped.
 
 mod common;
 
@@ -163,6 +164,38 @@ fn a_recording_is_byte_identical_run_to_run_and_needs_a_trace() {
     ]);
     assert_eq!(code, 2, "{stderr}");
     assert!(stderr.contains("--no-trace"), "{stderr}");
+    // The compact trace: trace.bin instead of trace.jsonl, read back as the same lines; no
+    // recording from it.
+    let out = tmp.path().join("out0");
+    let (code, stdout, stderr) = common::poinav(&[
+        OsStr::new("simulate"),
+        file.as_os_str(),
+        OsStr::new("-o"),
+        out.as_os_str(),
+        OsStr::new("--trace-format"),
+        OsStr::new("bin"),
+    ]);
+    assert_eq!(code, 0, "{stdout}{stderr}");
+    assert!(!out.join("trace.jsonl").exists());
+    let jsonl = std::fs::read_to_string(tmp.path().join("out1/trace.jsonl")).unwrap();
+    let bin = poinav_sim::trace_bin::read_file(&out.join("trace.bin"))
+        .unwrap()
+        .collect::<Result<Vec<String>, _>>()
+        .unwrap();
+    assert!(bin.len() > 500, "{} lines", bin.len());
+    assert_eq!(bin, jsonl.lines().collect::<Vec<_>>());
+    let (code, _, stderr) = common::poinav(&[
+        OsStr::new("simulate"),
+        file.as_os_str(),
+        OsStr::new("-o"),
+        out.as_os_str(),
+        OsStr::new("--trace-format"),
+        OsStr::new("bin"),
+        OsStr::new("--mcap"),
+        tmp.path().join("x.mcap").as_os_str(),
+    ]);
+    assert_ne!(code, 0, "{stderr}");
+    assert!(stderr.contains("--trace-format bin"), "{stderr}");
 }
 
 #[test]
