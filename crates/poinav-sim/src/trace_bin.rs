@@ -14,6 +14,8 @@
 
 use std::io::BufRead;
 
+use poinav_nav::ZoneIdx;
+
 use crate::controller::{Command, Mode};
 use crate::error::SimError;
 use crate::events::Event;
@@ -87,7 +89,9 @@ pub fn record_into(out: &mut Vec<u8>, r: &StepRecord, t: f64, events: &[&Event])
     b[12] = mode_code(r.mode);
     b[13] = u8::from(r.brush.on);
     b[14..16].copy_from_slice(&r.roles.0.to_le_bytes());
-    b[16..20].copy_from_slice(&r.zone.unwrap_or(u32::MAX).to_le_bytes());
+    // No zone is u32::MAX in the file.
+    let zone = r.zone.map_or(u32::MAX, |z| z.get() as u32);
+    b[16..20].copy_from_slice(&zone.to_le_bytes());
     b[20..24].copy_from_slice(&(text.len() as u32).to_le_bytes());
     let nums = [
         t,
@@ -140,7 +144,7 @@ fn decode(b: &[u8; RECORD_BYTES], names: &Names) -> Option<(StepRecord, f64, usi
     }
     let zone = match u32_at(b, 16) {
         u32::MAX => None,
-        z if (z as usize) < names.zones.len() => Some(z),
+        z if (z as usize) < names.zones.len() => Some(ZoneIdx::new(z as usize)),
         _ => return None,
     };
     let mut rays = [RayHit {
