@@ -229,9 +229,10 @@ pub fn storey_graph(nav: &Navigator<'_>, fi: usize, options: &Nav2Options) -> St
         .zip(&g.doors)
         .map(|(d, gd)| nav.options.speeds.door(d, gd.status).1)
         .collect();
+    let zone_cells = nav.zone_cells(fi);
     for n in t.nodes.iter().filter(|n| n.floor == fi) {
         let cell = match n.kind {
-            NodeKind::Zone => nav.zone_cell(fi, n.index),
+            NodeKind::Zone => zone_cells.get(n.index).copied().flatten(),
             NodeKind::Door => {
                 if !nav.open[n.id] {
                     continue;
