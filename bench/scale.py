@@ -19,7 +19,9 @@ them there):
   simulate      simulate scenario.toml: 2 robots, 30 simulated seconds, on the lowest storey
                 with spaces, each starting at the centre of one of its first two spaces and
                 routing to the other's (centres from IfcOpenShell's geometry of those spaces)
-Wall time, CPU time (user + sys) and peak RSS come from the child alone (os.wait4's rusage);
+Wall time, CPU time (user + sys) and peak RSS come from the child alone (os.wait4's rusage;
+IfcOpenShell runs in a child of its own, so this process stays small: a forked child's peak RSS
+starts at its parent's);
 the load average is printed before and after each model (the machine may be shared). A command still running
 after --timeout seconds (default 600) is killed and reported as `timeout`.
 Prints a markdown table per model: exit code, wall time, CPU time, peak RSS, time / export
@@ -69,7 +71,18 @@ def run(cmd, timeout, cwd):
 
 
 def space_centres(model, spaces):
-    """World XY centres (metres) of the IfcSpaces with these GlobalIds, from IfcOpenShell."""
+    """World XY centres (metres) of the IfcSpaces with these GlobalIds, from IfcOpenShell, in a
+    child Python: Linux starts a forked child's peak RSS at its parent's, so a parent holding the
+    model in IfcOpenShell (about 300 MiB for the furnished one) would inflate every later row."""
+    import json
+
+    out = subprocess.run([sys.executable, __file__, "--space-centres", str(model)] + list(spaces),
+                         capture_output=True, text=True, check=True).stdout
+    return {g: tuple(c) for g, c in json.loads(out).items()}
+
+
+def space_centres_here(model, spaces):
+    """`space_centres` in this process."""
     import ifcopenshell
     import ifcopenshell.geom
 
@@ -210,4 +223,9 @@ def main():
 
 
 if __name__ == "__main__":
+    if sys.argv[1:2] == ["--space-centres"]:
+        import json
+
+        print(json.dumps(space_centres_here(Path(sys.argv[2]), sys.argv[3:])))
+        sys.exit(0)
     sys.exit(main())
