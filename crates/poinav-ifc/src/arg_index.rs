@@ -20,12 +20,14 @@ impl ArgIndex {
     /// file under 4 GiB cannot reach.
     pub(crate) fn from_parts<'a>(
         parts: impl IntoIterator<Item = Option<&'a [u32]>>,
+        instances: usize,
         total: usize,
     ) -> Option<ArgIndex> {
         let mut index = ArgIndex {
             separators: Vec::with_capacity(total),
-            starts: vec![0],
+            starts: Vec::with_capacity(instances + 1),
         };
+        index.starts.push(0);
         for p in parts {
             index.separators.extend_from_slice(p.unwrap_or(&[]));
             index
@@ -33,6 +35,7 @@ impl ArgIndex {
                 .push(u32::try_from(index.separators.len()).ok()?);
         }
         index.separators.shrink_to_fit();
+        index.starts.shrink_to_fit();
         Some(index)
     }
 
@@ -52,7 +55,7 @@ mod tests {
     fn separators_per_instance_and_unindexed_instances() {
         let a: &[u32] = &[0, 3, 7];
         let b: &[u32] = &[0];
-        let ix = ArgIndex::from_parts([Some(a), None, Some(b)], 4).unwrap();
+        let ix = ArgIndex::from_parts([Some(a), None, Some(b)], 3, 4).unwrap();
         assert_eq!(ix.separators(0), Some(a));
         assert_eq!(ix.separators(1), None);
         assert_eq!(ix.separators(2), Some(b));

@@ -178,17 +178,19 @@ fn shape(args: &[u8], exists: impl Fn(u64) -> bool, seps: &mut Vec<u32>) -> Shap
     }
 }
 
+/// The largest `#id` the argument list `args` mentions (0 for none), dangling or not.
+pub(crate) fn max_ref(args: &[u8]) -> u64 {
+    shape(args, |_| true, &mut Vec::new()).max_ref
+}
+
 /// What [`structure`] finds besides problems.
 pub(crate) struct Structure {
-    /// Per instance, the largest `#id` its arguments mention (new ids must stay above these,
-    /// or an edit could make a dangling reference point at a new instance).
-    pub(crate) max_refs: Vec<u64>,
     /// Where each instance's attribute values lie.
     pub(crate) args: ArgIndex,
 }
 
-/// One chunk's results: problems, max refs, separators and each instance's separator count.
-type ChunkResult = (Vec<Problem>, Vec<u64>, Vec<u32>, Vec<u32>);
+/// One chunk's results: problems, separators and each instance's separator count.
+type ChunkResult = (Vec<Problem>, Vec<u32>, Vec<u32>);
 
 /// Dangling references, wrong attribute counts and unbalanced argument lists, checked in
 /// parallel; the same walk records what [`Structure`] holds.
@@ -200,15 +202,13 @@ pub(crate) fn structure(model: &Model) -> (Vec<Problem>, Structure) {
         .par_chunks(4096)
         .map(|chunk| {
             let mut out = Vec::new();
-            let mut max_refs = Vec::with_capacity(chunk.len());
             let mut seps = Vec::with_capacity(chunk.len() * 8);
             let mut counts = Vec::with_capacity(chunk.len());
             for inst in chunk {
-                let args = &bytes[inst.args..inst.end - 1];
+                let args = &bytes[inst.args()..inst.end() - 1];
                 let before = seps.len();
                 let s = shape(args, |id| model.entity(EntityId(id)).is_some(), &mut seps);
                 counts.push((seps.len() - before) as u32);
-                max_refs.push(s.max_ref);
                 if let Some(at) = s.unclosed {
                     out.push((
                         DiagnosticKind::Syntax,
@@ -307,17 +307,15 @@ pub(crate) fn structure(model: &Model) -> (Vec<Problem>, Structure) {
                     ));
                 }
             }
-            (out, max_refs, seps, counts)
+            (out, seps, counts)
         })
         .collect();
     let mut problems = Vec::new();
-    let mut max_refs = Vec::with_capacity(model.instances.len());
-    let total = parts.iter().map(|p| p.2.len()).sum();
-    for (p, m, _, _) in &parts {
+    let total = parts.iter().map(|p| p.1.len()).sum();
+    for (p, _, _) in &parts {
         problems.extend_from_slice(p);
-        max_refs.extend_from_slice(m);
     }
-    let per_instance = parts.iter().flat_map(|(_, _, seps, counts)| {
+    let per_instance = parts.iter().flat_map(|(_, seps, counts)| {
         let mut at = 0usize;
         counts.iter().map(move |&n| {
             let s = &seps[at..at + n as usize];
@@ -325,8 +323,8 @@ pub(crate) fn structure(model: &Model) -> (Vec<Problem>, Structure) {
             (n > 0).then_some(s)
         })
     });
-    let args = ArgIndex::from_parts(per_instance, total).unwrap_or_default();
-    (problems, Structure { max_refs, args })
+    let args = ArgIndex::from_parts(per_instance, model.instances.len(), total).unwrap_or_default();
+    (problems, Structure { args })
 }
 
 /// One diagnostic per instance whose bytes are not valid UTF-8.
@@ -344,7 +342,7 @@ pub(crate) fn non_utf8(model: &Model) -> Vec<Problem> {
                 let inst = at
                     .checked_sub(1)
                     .map(|k| &model.instances[k])
-                    .filter(|i| bad < i.end);
+                    .filter(|i| bad < i.end());
                 if seen.insert(inst.map(|i| i.id)) {
                     out.push((
                         DiagnosticKind::NonUtf8,

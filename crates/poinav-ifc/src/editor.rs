@@ -3,6 +3,7 @@
 
 use std::path::{Path, PathBuf};
 
+use rayon::prelude::*;
 use rustc_hash::{FxHashMap, FxHashSet};
 
 use crate::arg::Arg;
@@ -140,9 +141,12 @@ impl<'m> Editor<'m> {
                         message: d.message.clone(),
                     });
                 }
-                let max = (0..self.model.len())
-                    .filter(|p| !self.removed.contains(&(*p as u32)))
-                    .map(|p| self.model.max_id_used_at(p))
+                let (model, removed) = (self.model, &self.removed);
+                let max = (0..model.len())
+                    .into_par_iter()
+                    .with_min_len(4096)
+                    .filter(|p| !removed.contains(&(*p as u32)))
+                    .map(|p| model.max_id_used_at(p))
                     .max();
                 max.unwrap_or(0) + 1
             }
@@ -431,7 +435,7 @@ impl<'m> Editor<'m> {
             .enumerate()
             .rev()
             .find(|(p, _)| !self.removed.contains(&(*p as u32)))
-            .map(|(_, inst)| inst.end);
+            .map(|(_, inst)| inst.end());
         // The line end the new lines use: the one after the last kept instance (so reading the
         // copy again finds the same one), else the file's first.
         let nl: &[u8] = match insert_at.map(|at| &bytes[at..]) {
@@ -456,7 +460,7 @@ impl<'m> Editor<'m> {
                 inserted = true;
             }
             out.extend_from_slice(&bytes[cursor..inst.start]);
-            cursor = inst.end;
+            cursor = inst.end();
             if let Some(text) = self.replaced.get(&pos) {
                 out.extend_from_slice(text);
             } else {

@@ -85,7 +85,7 @@ impl<'m> Entity<'m> {
             Some(t) => self.model.schema().entity(t).name,
             None => {
                 let inst = self.inst();
-                let head = &self.model.bytes()[inst.start..inst.args];
+                let head = &self.model.bytes()[inst.start..inst.args()];
                 let name = head.split(|&b| b == b'=').nth(1).unwrap_or(b"");
                 std::str::from_utf8(name).unwrap_or("?").trim()
             }
@@ -104,13 +104,13 @@ impl<'m> Entity<'m> {
     /// The instance exactly as written, from `#` to `;`.
     pub fn raw(&self) -> &'m [u8] {
         let inst = self.inst();
-        &self.model.bytes()[inst.start..inst.end]
+        &self.model.bytes()[inst.start..inst.end()]
     }
 
     /// The argument list `( ... )` as written.
     pub fn raw_args(&self) -> &'m [u8] {
         let inst = self.inst();
-        let b = &self.model.bytes()[inst.args..inst.end - 1];
+        let b = &self.model.bytes()[inst.args()..inst.end() - 1];
         let trimmed = b
             .iter()
             .rposition(|c| !c.is_ascii_whitespace())

@@ -57,8 +57,6 @@ pub struct Model {
     ids: IdIndex,
     diagnostics: Vec<Diagnostic>,
     data_end: usize,
-    /// Per instance, the largest `#id` its arguments mention.
-    max_refs: Vec<u64>,
     /// Where each instance's attribute values lie.
     args: ArgIndex,
     lines: OnceLock<LineTable>,
@@ -139,7 +137,6 @@ impl Model {
             ids,
             diagnostics: Vec::new(),
             data_end: scanned.data_end,
-            max_refs: Vec::new(),
             args: ArgIndex::default(),
             lines: OnceLock::new(),
             by_type: OnceLock::new(),
@@ -147,7 +144,6 @@ impl Model {
         };
         let (problems, structure) = check::structure(&model);
         diagnostics.extend(problems);
-        model.max_refs = structure.max_refs;
         model.args = structure.args;
         diagnostics.extend(check::non_utf8(&model));
         diagnostics.extend(check::cycles(&model));
@@ -236,12 +232,13 @@ impl Model {
         EntityId(self.instances.iter().map(|i| i.id.0).max().unwrap_or(0))
     }
 
-    /// The largest `#id` the instance at `position` defines or mentions.
+    /// The largest `#id` the instance at `position` defines or mentions (read from its
+    /// arguments each time: only an editor's first new id asks, and keeping it per instance
+    /// cost 8 bytes an instance for the model's whole life).
     pub(crate) fn max_id_used_at(&self, position: usize) -> u64 {
-        self.instances[position]
-            .id
-            .0
-            .max(self.max_refs.get(position).copied().unwrap_or(0))
+        let inst = &self.instances[position];
+        let args = &self.bytes[inst.args()..inst.end() - 1];
+        inst.id.0.max(crate::check::max_ref(args))
     }
 
     /// The top-level separators of the argument list of the instance at `position` (see

@@ -300,9 +300,21 @@ pub fn write_navigator_bundle_with_progress(
         });
     }
     progress(crate::progress::Phase::Writing, n, n);
-    let (json, building_graph) = crate::route_graph::building_geojson(nav, &graphs, options);
-    let text = serde_json::to_string_pretty(&json).unwrap_or_default() + "\n";
-    write(&mut files, dir.join("route_graph.geojson"), text.as_bytes())?;
+    // The building's graph streamed to its file: held whole, it was the bundle's largest
+    // allocation on big buildings.
+    let path = dir.join("route_graph.geojson");
+    let failed = |source: std::io::Error| NavError::Write {
+        path: path.clone(),
+        source,
+    };
+    let mut file = poinav_io::AtomicFile::create(&path).map_err(failed)?;
+    let building_graph =
+        crate::route_graph::write_building_geojson(nav, &graphs, options, &mut file)
+            .map_err(|e| failed(e.into()))?;
+    drop(graphs);
+    std::io::Write::write_all(&mut file, b"\n").map_err(failed)?;
+    file.commit().map_err(failed)?;
+    files.push(path);
     let topo = nav.topology.to_json(nav.building, &nav.profile);
     let text = serde_json::to_string_pretty(&topo).unwrap_or_default() + "\n";
     write(&mut files, dir.join("topology.json"), text.as_bytes())?;

@@ -505,6 +505,28 @@ pub(crate) fn simplify(
     out
 }
 
+/// Keeps in `best` (clearance, distance to `anchor`, cell) whichever of it and cell `i` is
+/// farther from obstacles (ties, within a quarter cell: nearer to `anchor`; earlier cells win
+/// exact ties): [`Navigator::zone_cell`]'s choice.
+fn farther_or_nearer(
+    best: &mut Option<(f32, f64, usize)>,
+    grid: &NavGrid,
+    i: usize,
+    anchor: DVec2,
+) {
+    let g = &grid.occupancy;
+    let tie = (g.resolution_m / 4.0) as f32;
+    let c = grid.clearance_m[i].min(1e6);
+    let d = g.center(i).distance(anchor);
+    let better = match *best {
+        None => true,
+        Some((bc, bd, _)) => c > bc + tie || ((c - bc).abs() <= tie && d < bd),
+    };
+    if better {
+        *best = Some((c, d, i));
+    }
+}
+
 /// The polyline's length, driving time (seconds per metre from `time`) and turning time.
 fn measure(
     grid: &NavGrid,
@@ -558,23 +580,34 @@ impl Navigator<'_> {
         let grid = &self.floors[floor].grid;
         let g = &grid.occupancy;
         let anchor = self.topology.nodes[self.topology.zone_nodes[floor][zone]].position();
-        let mut best: Option<(f32, f64, usize)> = None;
-        let tie = (g.resolution_m / 4.0) as f32;
+        let mut best = None;
         for i in 0..g.len() {
             if g.zone[i].map(|z| z.get()) != Some(zone) || !grid.traversable(i) {
                 continue;
             }
-            let c = grid.clearance_m[i].min(1e6);
-            let d = g.center(i).distance(anchor);
-            let better = match best {
-                None => true,
-                Some((bc, bd, _)) => c > bc + tie || ((c - bc).abs() <= tie && d < bd),
-            };
-            if better {
-                best = Some((c, d, i));
-            }
+            farther_or_nearer(&mut best, grid, i, anchor);
         }
         best.map(|b| b.2)
+    }
+
+    /// [`Navigator::zone_cell`] of every zone of `floor` (index as in `Floor::zones`), in one
+    /// pass over the grid instead of one per zone (the route graph asks for all of them).
+    pub fn zone_cells(&self, floor: usize) -> Vec<Option<usize>> {
+        let grid = &self.floors[floor].grid;
+        let g = &grid.occupancy;
+        let anchors: Vec<DVec2> = self.topology.zone_nodes[floor]
+            .iter()
+            .map(|&n| self.topology.nodes[n].position())
+            .collect();
+        let mut best = vec![None; anchors.len()];
+        for i in 0..g.len() {
+            let z = g.zone[i] as usize;
+            if z >= anchors.len() || !grid.traversable(i) {
+                continue;
+            }
+            farther_or_nearer(&mut best[z], grid, i, anchors[z]);
+        }
+        best.into_iter().map(|b| b.map(|b| b.2)).collect()
     }
 
     fn resolve(&self, place: &Place) -> Result<Spot, NavError> {

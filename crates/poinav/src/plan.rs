@@ -1,4 +1,5 @@
-//! `poinav plan FILE --storey NAME -o plan.svg`: a readable floor plan of one storey.
+//! `poinav plan FILE --storey NAME -o plan.svg`: a readable floor plan of one storey;
+//! `poinav plan FILE --all-storeys -o DIR`: every storey's, the model read and meshed once.
 
 use std::collections::HashMap;
 use std::path::PathBuf;
@@ -20,9 +21,13 @@ pub struct Args {
     /// The IFC file (never modified).
     file: PathBuf,
     /// The storey (Name or GlobalId); default: the lowest storey with doors.
-    #[arg(long)]
+    #[arg(long, conflicts_with = "all_storeys")]
     storey: Option<String>,
-    /// Where to write the SVG.
+    /// Every storey's plan, into the folder `-o` names (`NN-<storey>.svg`, NN its position
+    /// in elevation order as in `export nav2`), from one reading and meshing of the model.
+    #[arg(long)]
+    all_storeys: bool,
+    /// Where to write the SVG (with `--all-storeys`: the folder, created if missing).
     #[arg(short, long)]
     output: PathBuf,
     /// Robot profile whose door statuses colour the doors (default: the paper's robot).
@@ -54,12 +59,20 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         &crate::progress::tick,
     );
     crate::progress::end();
-    let storeys: Vec<poinav_bridge::StoreyKey> =
-        plans.iter().map(poinav_bridge::StoreyKey::of).collect();
-    let plan = &plans[poinav_bridge::pick(&storeys, args.storey.as_deref())?];
-    let warnings: Vec<Warning> = plan
-        .problems
+    let failed = meshes.failures.len();
+    let meshed = meshes.elements.len() + meshes.spaces.len();
+    // The meshes are not needed any more: the plans hold what is drawn.
+    drop(meshes);
+    let chosen: Vec<usize> = if args.all_storeys {
+        (0..plans.len()).collect()
+    } else {
+        let storeys: Vec<poinav_bridge::StoreyKey> =
+            plans.iter().map(poinav_bridge::StoreyKey::of).collect();
+        vec![poinav_bridge::pick(&storeys, args.storey.as_deref())?]
+    };
+    let warnings: Vec<Warning> = chosen
         .iter()
+        .flat_map(|&k| plans[k].problems.iter())
         .map(|p| {
             let fallback = if p.fell_back {
                 " (drawn from its footprint)"
@@ -74,12 +87,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         })
         .collect();
     crate::warnings::print(&warnings);
-    let failed = meshes.failures.len();
-    crate::ensure_geometry(
-        &args.file,
-        meshes.elements.len() + meshes.spaces.len(),
-        failed,
-    )?;
+    crate::ensure_geometry(&args.file, meshed, failed)?;
     crate::progress::stage("classifying");
     let profile = crate::profile(args.profile.as_deref())?;
     let c = classify(&model, &RuleSet::defaults(), &profile);
@@ -93,29 +101,46 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
                 .map(|a| (e.global_id.clone(), a.status.label().to_string()))
         })
         .collect();
-    crate::progress::stage("writing");
-    let svg = to_svg(
-        plan,
-        &SvgOptions {
-            door_status,
-            ..SvgOptions::default()
-        },
-    );
-    poinav_io::write_atomic(&args.output, svg.as_bytes())
-        .with_context(|| format!("writing {}", args.output.display()))?;
-    crate::progress::end();
-    let doorways = match plan.openings.len() {
-        0 => String::new(),
-        1 => "; 1 doorway without a door".to_string(),
-        n => format!("; {n} doorways without a door"),
+    let options = SvgOptions {
+        door_status,
+        ..SvgOptions::default()
     };
-    outln!(
-        "wrote {}: storey {} ({} items, {} doors, {} problems{doorways})",
-        args.output.display(),
-        plan.storey_name.as_deref().unwrap_or("-"),
-        plan.items.len(),
-        plan.doors.len(),
-        plan.problems.len()
-    );
+    if args.all_storeys {
+        std::fs::create_dir_all(&args.output)
+            .with_context(|| format!("creating {}", args.output.display()))?;
+    }
+    crate::progress::stage("writing");
+    let mut written = Vec::new();
+    for &k in &chosen {
+        let plan = &plans[k];
+        let path = if args.all_storeys {
+            let name = plan.storey_name.as_deref().unwrap_or("storey");
+            args.output
+                .join(format!("{k:02}-{}.svg", poinav_nav::audit::slug(name)))
+        } else {
+            args.output.clone()
+        };
+        let svg = to_svg(plan, &options);
+        poinav_io::write_atomic(&path, svg.as_bytes())
+            .with_context(|| format!("writing {}", path.display()))?;
+        written.push((k, path));
+    }
+    crate::progress::end();
+    for (k, path) in written {
+        let plan = &plans[k];
+        let doorways = match plan.openings.len() {
+            0 => String::new(),
+            1 => "; 1 doorway without a door".to_string(),
+            n => format!("; {n} doorways without a door"),
+        };
+        outln!(
+            "wrote {}: storey {} ({} items, {} doors, {} problems{doorways})",
+            path.display(),
+            plan.storey_name.as_deref().unwrap_or("-"),
+            plan.items.len(),
+            plan.doors.len(),
+            plan.problems.len()
+        );
+    }
     Ok(ExitCode::SUCCESS)
 }

@@ -2,7 +2,8 @@
 //! office-a.ifc: routes through the right doors, a narrowed door makes its room unreachable
 //! with the door named, and the Nav2 bundle follows nav2_map_server's conventions; a hillside
 //! house's upper door onto the terrain is an entrance the audit names; storeys with nothing to
-//! navigate (office-a's roof, the railway's parts) are skipped with a line.
+//! navigate (office-a's roof, the railway's parts) are skipped with a line; `plan --all-storeys`
+//! writes every storey as `plan --storey` does.
 
 mod common;
 
@@ -497,6 +498,69 @@ fn the_plan_draws_and_counts_office_a_lift_doorway() {
         svg.contains(r#"data-global-id="27TOPmxCrDgPimmYCM5z6f" data-class="IfcOpeningElement""#),
         "the lift doorway's passage is drawn"
     );
+}
+
+#[test]
+fn plan_all_storeys_writes_each_storey_as_plan_storey_does() {
+    // One reading and meshing for every storey; each file is byte for byte what
+    // `plan --storey` writes for that storey.
+    let dir = tempfile::tempdir().unwrap();
+    let file = common::shared().join("ifc/duplex-apartment.ifc");
+    let all = dir.path().join("plans");
+    let (code, stdout, err) = run(&[
+        OsStr::new("plan"),
+        file.as_os_str(),
+        OsStr::new("--all-storeys"),
+        OsStr::new("-o"),
+        all.as_os_str(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let mut names: Vec<String> = std::fs::read_dir(&all)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    assert_eq!(
+        names,
+        [
+            "00-t-fdn.svg",
+            "01-level-1.svg",
+            "02-level-2.svg",
+            "03-roof.svg"
+        ]
+    );
+    for counts in [
+        "storey T/FDN (7 items, 0 doors, 0 problems)",
+        "storey Level 1 (90 items, 6 doors, 0 problems)",
+        "storey Level 2 (84 items, 8 doors, 0 problems)",
+        "storey Roof (8 items, 0 doors, 0 problems)",
+    ] {
+        assert!(stdout.contains(counts), "{counts} in {stdout}");
+    }
+    let one = dir.path().join("level-2.svg");
+    let (code, _, err) = run(&[
+        OsStr::new("plan"),
+        file.as_os_str(),
+        OsStr::new("--storey"),
+        OsStr::new("Level 2"),
+        OsStr::new("-o"),
+        one.as_os_str(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        std::fs::read(&one).unwrap() == std::fs::read(all.join("02-level-2.svg")).unwrap(),
+        "plan --all-storeys wrote Level 2 otherwise than plan --storey"
+    );
+    let (code, _, err) = run(&[
+        OsStr::new("plan"),
+        file.as_os_str(),
+        OsStr::new("--all-storeys"),
+        OsStr::new("--storey"),
+        OsStr::new("Level 2"),
+        OsStr::new("-o"),
+        all.as_os_str(),
+    ]);
+    assert_eq!(code, 2, "--storey with --all-storeys is refused: {err}");
 }
 
 #[test]
