@@ -601,7 +601,9 @@ impl Navigator<'_> {
             .collect();
         let mut best = vec![None; anchors.len()];
         for i in 0..g.len() {
-            let z = g.zone[i] as usize;
+            let Some(z) = g.zone[i].map(|z| z.get()) else {
+                continue;
+            };
             if z >= anchors.len() || !grid.traversable(i) {
                 continue;
             }
