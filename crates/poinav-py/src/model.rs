@@ -177,19 +177,7 @@ impl Model {
     #[pyo3(signature = (cls = "IfcProduct"))]
     fn psets<'py>(&self, py: Python<'py>, cls: &str) -> PyResult<Bound<'py, PyDict>> {
         let all = py.detach(|| all_sets(&self.inner, cls));
-        let out = PyDict::new(py);
-        let mut strings = convert::Strings::default();
-        let id = pyo3::intern!(py, "id");
-        for (gid, sets) in &all {
-            let d = PyDict::new(py);
-            for s in sets {
-                let props = convert::properties(py, &s.properties, &mut strings)?;
-                props.set_item(id, s.id.0)?;
-                d.set_item(strings.get(py, &s.name), props)?;
-            }
-            out.set_item(gid, d)?;
-        }
-        drop(strings);
+        let out = crate::psets::psets(py, &all)?;
         // Freeing the library's values needs no GIL.
         py.detach(move || drop(all));
         Ok(out)
