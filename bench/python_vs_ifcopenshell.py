@@ -1,14 +1,16 @@
 """Benchmark the poinav wheel against IfcOpenShell's Python API, and against the same Rust
 library calls without Python objects (what the wheel adds).
 
-Usage: python bench/python_vs_ifcopenshell.py [FILE...] [--rounds N] [--no-meshes] [--no-ifcos]
-                                              [--instructions] [--cli PATH]
+Usage: python bench/python_vs_ifcopenshell.py [FILE...] [--rounds N] [--ifcos-rounds M]
+                                              [--no-meshes] [--no-ifcos] [--instructions]
+                                              [--cli PATH]
 
 Run it with a Python that has the poinav wheel (a release build: `maturin build --release`),
 numpy and IfcOpenShell installed. FILE defaults to fzk-haus-ifc4.ifc, duplex-apartment.ifc
 and office-a.ifc from the corpus ($POINAV_SHARED/ifc, else ../shared/ifc). Per file, N rounds
-(default 9, after one untimed warm-up round), the contenders interleaved within each round (each
-round starting with the next one) so that machine noise hits all alike:
+(default 9, after one untimed warm-up round) of the wheel and the library in pairs, their order
+swapped every round, so that machine noise hits both alike; then M rounds (default 3) of
+IfcOpenShell, apart (its large heap, given back, made whoever ran next pay for fresh pages):
 
   psets    poinav      poinav.open(FILE).psets(): every IfcProduct's property sets as dicts
            rust        the same library calls in Rust, no Python objects (_native.bench_psets):
@@ -123,27 +125,38 @@ def cli_inspect(cli, path):
     subprocess.run([cli, "inspect", str(path), "--json"], stdout=subprocess.DEVNULL, check=True)
 
 
-def bench(path, rounds, kinds, ifcos, cli):
-    tasks = {}
-    for kind in kinds:
-        for who in ("poinav", "rust") + (("ifcos",) if ifcos else ()):
-            tasks[(kind, who)] = (lambda fn: lambda: fn(path))(CALLS[(kind, who)])
+def bench(path, rounds, kinds, ifcos_rounds, cli):
+    # The wheel and the library in pairs, their order swapped every round (ABBA), so that each
+    # runs as often first as second (the first after a pair pays for the other kind's freed
+    # memory); IfcOpenShell apart afterwards: run between them, whoever came next paid for
+    # the pages its large heap had given back.
+    pairs = [((kind, "poinav"), (kind, "rust")) for kind in kinds]
+    tasks = {k: (lambda fn: lambda: fn(path))(CALLS[k]) for pair in pairs for k in pair}
     if cli:
+        pairs.append((("inspect", "poinav"), ("inspect", "cli")))
         tasks[("inspect", "poinav")] = lambda: poinav.open(path).inspect()
         tasks[("inspect", "cli")] = lambda: cli_inspect(cli, path)
     times = {k: [] for k in tasks}
     cpus = {k: [] for k in tasks}
     counts = {}
-    order = list(tasks)
+
+    def run(k, keep):
+        (t, c), n = timed(tasks[k])
+        if keep:
+            times[k].append(t)
+            cpus[k].append(c)
+        counts[k] = n
+
     for r in range(rounds + 1):
-        # Each round starts with another contender: whoever runs right after IfcOpenShell
-        # pays for fresh memory pages, a bias a fixed order would give one side only.
-        for k in order[r % len(order):] + order[:r % len(order)]:
-            (t, c), n = timed(tasks[k])
-            if r > 0:
-                times[k].append(t)
-                cpus[k].append(c)
-            counts[k] = n
+        for a, b in pairs:
+            for k in ((a, b) if r % 2 else (b, a)):
+                run(k, r > 0)
+    if ifcos_rounds:
+        for kind in kinds:
+            k = (kind, "ifcos")
+            tasks[k], times[k], cpus[k] = (lambda fn: lambda: fn(path))(CALLS[k]), [], []
+            for r in range(ifcos_rounds + 1):
+                run(k, r > 0)
     return times, cpus, counts
 
 
@@ -176,6 +189,7 @@ def main():
     ap.add_argument("files", nargs="*")
     ap.add_argument("--rounds", type=int, default=9)
     ap.add_argument("--no-meshes", action="store_true")
+    ap.add_argument("--ifcos-rounds", type=int, default=3, help="IfcOpenShell's rounds (default 3)")
     ap.add_argument("--no-ifcos", action="store_true", help="leave IfcOpenShell out (faster)")
     ap.add_argument("--instructions", action="store_true", help="also count instructions (valgrind)")
     ap.add_argument("--cli", help="a poinav binary to compare inspect with")
@@ -189,10 +203,11 @@ def main():
         import ifcopenshell
         versions = f"IfcOpenShell {ifcopenshell.version}, " + versions
     print(f"poinav {poinav.__version__} (wheel), {versions}; {os.cpu_count()} cores; "
-          f"median of {args.rounds} rounds")
+          f"median of {args.rounds} rounds" + ("" if args.no_ifcos else f" ({args.ifcos_rounds} for IfcOpenShell)"))
     for path in files:
         load = os.getloadavg()[0]
-        times, cpus, counts = bench(path, max(1, args.rounds), kinds, not args.no_ifcos, args.cli)
+        times, cpus, counts = bench(path, max(1, args.rounds), kinds,
+                                    0 if args.no_ifcos else max(1, args.ifcos_rounds), args.cli)
         load = f"{load:.1f}-{os.getloadavg()[0]:.1f}"
         med = {k: statistics.median(v) for k, v in times.items()}
         best = {k: min(v) for k, v in times.items()}
