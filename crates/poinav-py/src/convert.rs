@@ -1,6 +1,7 @@
 //! Conversions to Python: JSON values (through the `json` module, so dicts keep their
 //! order), property values, and flat buffers to numpy arrays.
 
+use glam::DVec3;
 use numpy::ndarray::Array2;
 use numpy::IntoPyArray;
 use poinav_ifc::property::{Property, PropertyValue, Scalar, TypedScalar};
@@ -63,6 +64,19 @@ pub fn rows<'py, T: numpy::Element, const K: usize>(
     let a = Array2::from_shape_vec((n, K), rows.into_flattened())
         .map_err(|e| crate::error::PoinavError::new_err(e.to_string()))?;
     Ok(a.into_pyarray(py).into_any())
+}
+
+/// Vertex positions as rows of three floats, the same memory (no copy), for `rows`.
+pub fn position_rows(positions: Vec<DVec3>) -> Vec<[f64; 3]> {
+    const {
+        assert!(size_of::<DVec3>() == size_of::<[f64; 3]>());
+        assert!(align_of::<DVec3>() == align_of::<[f64; 3]>());
+    }
+    let mut v = std::mem::ManuallyDrop::new(positions);
+    // SAFETY: `DVec3` is `#[repr(C)] { x: f64, y: f64, z: f64 }`: the layout of `[f64; 3]`
+    // (size and alignment checked above), so the allocation, length and capacity carry over
+    // and the vector frees it with the same layout.
+    unsafe { Vec::from_raw_parts(v.as_mut_ptr().cast::<[f64; 3]>(), v.len(), v.capacity()) }
 }
 
 fn scalar<'a, 'py>(

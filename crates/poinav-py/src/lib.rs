@@ -12,6 +12,7 @@ mod inspect;
 mod model;
 mod navigators;
 mod profile;
+mod psets;
 mod simulate;
 
 use pyo3::prelude::*;

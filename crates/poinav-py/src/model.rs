@@ -177,19 +177,7 @@ impl Model {
     #[pyo3(signature = (cls = "IfcProduct"))]
     fn psets<'py>(&self, py: Python<'py>, cls: &str) -> PyResult<Bound<'py, PyDict>> {
         let all = py.detach(|| all_sets(&self.inner, cls));
-        let out = PyDict::new(py);
-        let mut strings = convert::Strings::default();
-        let id = pyo3::intern!(py, "id");
-        for (gid, sets) in &all {
-            let d = PyDict::new(py);
-            for s in sets {
-                let props = convert::properties(py, &s.properties, &mut strings)?;
-                props.set_item(id, s.id.0)?;
-                d.set_item(strings.get(py, &s.name), props)?;
-            }
-            out.set_item(gid, d)?;
-        }
-        drop(strings);
+        let out = crate::psets::psets(py, &all)?;
         // Freeing the library's values needs no GIL.
         py.detach(move || drop(all));
         Ok(out)
@@ -201,29 +189,22 @@ impl Model {
     /// spaces. Elements whose geometry failed are left out (see `mesh_failures`).
     #[pyo3(signature = (spaces = false))]
     fn meshes<'py>(&self, py: Python<'py>, spaces: bool) -> PyResult<Vec<Bound<'py, PyDict>>> {
-        // Meshing and the vertices' flat rows in parallel without the GIL; with it, only O(1)
-        // work per element: the vectors become the arrays' memory, not copied.
+        // Meshing in parallel without the GIL; with it, only O(1) work per element: the
+        // vectors become the arrays' memory, not copied.
         let (elements, storeys) = py.detach(|| {
             let meshes = poinav_geom::mesh_model(&self.inner);
-            let list: Vec<ElementMesh> = meshes
+            let elements: Vec<ElementMesh> = meshes
                 .elements
                 .into_iter()
                 .chain(spaces.then_some(meshes.spaces).into_iter().flatten())
                 .collect();
-            let elements: Vec<(ElementMesh, Vec<[f64; 3]>)> = list
-                .into_par_iter()
-                .map(|mut e| {
-                    let positions = std::mem::take(&mut e.mesh.positions);
-                    (e, positions.iter().map(|p| p.to_array()).collect())
-                })
-                .collect();
-            let storeys = storey_names(&self.inner, elements.iter().map(|(e, _)| e));
+            let storeys = storey_names(&self.inner, elements.iter());
             (elements, storeys)
         });
         let k = MeshKeys::new(py);
         let mut out = Vec::with_capacity(elements.len());
         let mut strings = convert::Strings::default();
-        for (e, _) in &elements {
+        for e in &elements {
             let d = PyDict::new(py);
             d.set_item(&k.id, e.product.0)?;
             d.set_item(&k.global_id, &e.global_id)?;
@@ -239,7 +220,8 @@ impl Model {
         }
         drop(strings);
         // The vectors move into the arrays (the loop above borrowed the names).
-        for (d, (e, vertices)) in out.iter().zip(elements) {
+        for (d, e) in out.iter().zip(elements) {
+            let vertices = convert::position_rows(e.mesh.positions);
             d.set_item(&k.vertices, convert::rows(py, vertices)?)?;
             d.set_item(&k.triangles, convert::rows(py, e.mesh.triangles)?)?;
         }

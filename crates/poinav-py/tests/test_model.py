@@ -76,6 +76,25 @@ def test_psets_equal_ifcopenshell(name):
     assert compared > 100
 
 
+def test_psets_shared_by_products_are_separate_dicts():
+    # duplex: 2,329 sets of 1,459 distinct #ids; a set's later products get copies of the
+    # first one's dict, which must not be the same object.
+    psets = poinav.open(CORPUS / "duplex-apartment.ifc").psets()
+    by_id = {}
+    for sets in psets.values():
+        for props in sets.values():
+            by_id.setdefault(props["id"], []).append(props)
+    shared = [dicts for dicts in by_id.values() if len(dicts) > 1]
+    assert sum(len(d) for d in by_id.values()) == 2329 and len(by_id) == 1459
+    assert len(shared) > 100
+    for first, *others in shared:
+        for other in others:
+            assert other == first and other is not first
+    first, second = shared[0][:2]
+    first["poinav-test"] = 1.0
+    assert "poinav-test" not in second
+
+
 def test_open_from_bytes_and_ifcopenshell_file(fzk):
     path = CORPUS / "fzk-haus-ifc4.ifc"
     from_bytes = poinav.open(path.read_bytes(), name="fzk.ifc")
