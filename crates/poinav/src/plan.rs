@@ -57,7 +57,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     let storeys: Vec<poinav_bridge::StoreyKey> =
         plans.iter().map(poinav_bridge::StoreyKey::of).collect();
     let plan = &plans[poinav_bridge::pick(&storeys, args.storey.as_deref())?];
-    let warnings: Vec<Warning> = plan
+    let mut warnings: Vec<Warning> = plan
         .problems
         .iter()
         .map(|p| {
@@ -73,6 +73,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
             )
         })
         .collect();
+    warnings.extend(crate::warnings::uncut(&model, &meshes));
     crate::warnings::print(&warnings);
     let failed = meshes.failures.len();
     crate::ensure_geometry(
