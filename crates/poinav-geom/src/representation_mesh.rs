@@ -1,10 +1,10 @@
 //! The items of an `IfcShapeRepresentation` as triangle meshes in the representation's
 //! coordinates (metres): extrusions (tapered too; of open profiles: surfaces), revolutions,
-//! swept disks and areas swept along a directrix, sectioned solids along alignments, faceted
-//! and advanced breps, surface models, tessellated face sets, boxes and CSG primitives,
-//! boolean results (clipping by half-spaces, differences, unions and intersections of solids;
-//! an operand that cannot be made is left out with a warning, as IfcOpenShell leaves it out)
-//! and mapped items (nested, with any
+//! swept disks and areas swept along a directrix, sectioned solids and surfaces along
+//! alignments, faceted and advanced breps, surface models, tessellated face sets, boxes and
+//! CSG primitives, boolean results (clipping by half-spaces, differences, unions and
+//! intersections of solids; an operand that cannot be made is left out with a warning, as
+//! IfcOpenShell leaves it out) and mapped items (nested, with any
 //! `IfcCartesianTransformationOperator`, mirrored or non-uniformly scaled).
 //!
 //! Work is bounded: at most [`MAX_ITEMS`] items and [`MAX_TRIANGLES`] triangles per
@@ -36,7 +36,7 @@ use crate::open_profile::{extruded_open_profile, is_open_profile_extrusion};
 use crate::parameterized_profile::ellipse;
 use crate::profile::ProfileArea;
 use crate::revolve::revolved_area_solid;
-use crate::sectioned_solid::sectioned_solid_horizontal;
+use crate::sectioned_solid::{sectioned_solid_horizontal, sectioned_surface};
 use crate::surface_style::item_colour;
 use crate::swept_area::{directrix_swept_area_solid, is_directrix_swept_area_solid};
 use crate::swept_disk::swept_disk_solid;
@@ -212,13 +212,17 @@ impl ItemMesher {
         } else if item.is_a("IfcAdvancedBrep") {
             let mesh = advanced_brep(item, &self.units)?;
             self.leaf(&item, mesh, true)
-        } else if item.is_a("IfcSectionedSolidHorizontal") {
+        } else if item.is_a("IfcSectionedSolidHorizontal") || item.is_a("IfcSectionedSurface") {
             let directrix = required_ref(&item, "Directrix", "IfcCurve")?;
             let curve = match self.maps.curves.get(&directrix.id()) {
                 Some(c) => c.clone(),
                 None => Arc::new(BasisCurve::read(directrix, &self.units)?),
             };
             self.maps.curves.insert(directrix.id(), curve.clone());
+            if item.is_a("IfcSectionedSurface") {
+                let mesh = sectioned_surface(item, &self.units, &curve)?;
+                return self.leaf(&item, mesh, false);
+            }
             let mesh = sectioned_solid_horizontal(item, &self.units, &curve)?;
             self.leaf(&item, mesh, true)
         } else if item.is_a("IfcManifoldSolidBrep")
