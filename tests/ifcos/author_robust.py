@@ -20,6 +20,7 @@ along y, all in one storey:
   the second operands from the outside in, and cuts the first of them it can make by the
   others), under a union, and under a clipping (the half-space then heads the list and
   IfcOpenShell keeps what the next solid has in the half-space's material);
+- a face of a surface model drawn as a star in one stroke (401 points, {401/2}): filled;
 - an IfcMirroredProfileDef (an L mirrored about its y axis) and the same as an
   IfcDerivedProfileDef with a mirroring operator;
 - an IfcCurveBoundedPlane (a 3 x 2 m rectangle with a 1 x 0.5 m hole, on a plane tilted
@@ -159,6 +160,14 @@ left_out["first_operand_bad_clipped"] = [bad.id()]
 point = pt(0, 0, 0)
 case("first_operand_point", [f.createIfcBooleanResult("DIFFERENCE", point, box(0, 0, 0, 2, 1, 1))])
 left_out["first_operand_point"] = [point.id()]
+
+# --- A face of 401 points drawn as a star in one stroke ({401/2}), alone in a surface model:
+# IfcOpenShell fills it (nearly the unit disc).
+n = 401
+star_face = [pt(math.cos(2 * math.pi * (2 * i % n) / n), math.sin(2 * math.pi * (2 * i % n) / n), 0.0) for i in range(n)]
+loop = f.createIfcPolyLoop(star_face)
+face = f.createIfcFace([f.createIfcFaceOuterBound(loop, True)])
+case("star_face_401", [f.createIfcShellBasedSurfaceModel([f.createIfcOpenShell([face])])], kind="SurfaceModel")
 
 # --- Mirrored profiles.
 ell = f.createIfcArbitraryClosedProfileDef(
