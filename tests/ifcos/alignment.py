@@ -10,7 +10,9 @@ Usage: .venv/bin/python tests/ifcos/alignment.py RAILWAY.ifc OUT.ifc
    one IfcSectionedSolidHorizontal over the clothoid and arc; open surfaces (courses named
    `surface ...`): IfcSectionedSurface of IFC4X3 IfcOpenCrossProfileDef sections (widths along
    the slopes from an offset point, and horizontal widths) and of IfcArbitraryOpenProfileDef
-   sections, and an open cross profile extruded. The first four proxies are in railway part
+   sections, and an open cross profile extruded; sectioned solids along two
+   IfcOffsetCurveByDistances of the gradient curve (courses named `offset course ...`,
+   constant and growing offsets). The first four proxies are in railway part
    West, the other three in East, the courses in none (no storey, no building).
 2. Meshes them, and a fixed sample of RAILWAY.ifc (IfcOpenShell needs about 1.6 s per track
    element there, so the whole file is out of reach): track elements spread over the track,
@@ -191,6 +193,35 @@ def author(path):
             Depth=2.0,
         ),
     }
+    # Courses along offset curves (IfcOffsetCurveByDistances of the gradient curve): offsets
+    # 3 m left and 0.5 m up throughout, and offsets growing from 2 m to 6 m left.
+    def by_distance(d, lateral, vertical_offset):
+        return f.createIfcPointByDistanceExpression(
+            DistanceAlong=f.createIfcLengthMeasure(d),
+            OffsetLateral=lateral or None,
+            OffsetVertical=vertical_offset or None,
+            BasisCurve=curve,
+        )
+
+    beam = f.createIfcRectangleProfileDef(ProfileType="AREA", XDim=1.0, YDim=0.5)
+    for name, values in [
+        ("offset course", [(0.0, 3.0, 0.5), (500.0, 3.0, 0.5)]),
+        ("offset course widening", [(0.0, 2.0, 0.0), (500.0, 6.0, 0.0)]),
+    ]:
+        offset = f.createIfcOffsetCurveByDistances(
+            BasisCurve=curve, OffsetValues=[by_distance(*v) for v in values]
+        )
+        positions = [
+            f.createIfcAxis2PlacementLinear(
+                Location=f.createIfcPointByDistanceExpression(
+                    DistanceAlong=f.createIfcLengthMeasure(d), BasisCurve=offset
+                )
+            )
+            for d in (100.0, 300.0)
+        ]
+        surfaces[name] = f.createIfcSectionedSolidHorizontal(
+            Directrix=offset, CrossSections=[beam, beam], CrossSectionPositions=positions
+        )
     for name, item in surfaces.items():
         c = ifcopenshell.api.root.create_entity(f, ifc_class="IfcCourse", name=name)
         c.ObjectPlacement = f.createIfcLocalPlacement(

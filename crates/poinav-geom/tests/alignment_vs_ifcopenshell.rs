@@ -6,7 +6,8 @@
 //! and their meshes' and a sectioned solid's bounding boxes are within 1 cm, and so are those
 //! of open surfaces (IFC4X3 `IfcSectionedSurface` of `IfcOpenCrossProfileDef` and
 //! `IfcArbitraryOpenProfileDef` sections, an extruded open cross profile), their areas within
-//! 1 %; on the corpus's
+//! 1 %, and of sectioned solids along `IfcOffsetCurveByDistances` (constant and growing
+//! offsets); on the corpus's
 //! railway track, every product of a fixed sample IfcOpenShell meshes (track elements spread
 //! over the track, courses and a rail) is meshed here too, boxes within 1 cm, and every track
 //! element's linear placement resolves. The authored model has no storey and no building: it
@@ -99,8 +100,8 @@ fn alignments_match_ifcopenshell() {
     let shapes = theirs["authored"].as_object().unwrap();
     assert_eq!(
         shapes.len(),
-        12,
-        "IfcOpenShell meshed 7 proxies, the course and 4 surfaces"
+        14,
+        "IfcOpenShell meshed 7 proxies, the course, 4 surfaces and 2 courses on offset curves"
     );
     let mut surfaces = 0;
     let (mut worst_position, mut worst_angle, mut worst_box) = (0.0f64, 0.0f64, 0.0f64);
@@ -165,13 +166,15 @@ fn alignments_match_ifcopenshell() {
             "embankment",
             "surface cross slopes",
             "surface cross horizontal",
-            "surface open profile"
+            "surface open profile",
+            "offset course",
+            "offset course widening"
         ]
     );
     assert_eq!(
         summary,
         [
-            ("Site".to_string(), 4),
+            ("Site".to_string(), 6),
             ("West".to_string(), 4),
             ("East".to_string(), 3)
         ]
