@@ -19,7 +19,8 @@ settings) and prints one JSON object mapping each case name to
                  instead of segment index plus fraction), the case whose element has the
                  geometry the schema defines, written out explicitly
 
-The cases: swept disks along a 3D polyline with posts (a railing), a tube (InnerRadius) along
+The cases: swept disks along a 3D polyline with posts (a railing; again along an
+IfcSurfaceCurve whose Curve3D is that polyline), a tube (InnerRadius) along
 a non-planar polyline, a composite curve of a line, a trimmed circle arc and a reversed
 (SameSense .F.) polyline, an indexed poly curve with an arc, a whole circle (a ring), a circle
 trimmed by points; IfcSweptDiskSolidPolygonal with FilletRadius; StartParam/EndParam trims;
@@ -123,6 +124,11 @@ def author_ifc4(w):
         f.createIfcCompositeCurveSegment("CONTINUOUS", False, w.polyline((7, 1, 0.5), (9, 1, 0.5))),
     ]
     w.element("IfcPipeSegment", "disk_composite", disk(f.createIfcCompositeCurve(segs, False), 0.05, None, None, None))
+    # The same railing's handrail along an IfcSurfaceCurve (its Curve3D a polyline, on the
+    # plane y = 20): the curve in space is swept.
+    wall_plane = f.createIfcPlane(f.createIfcAxis2Placement3D(w.pt(0, 20, 0), f.createIfcDirection((0., 1., 0.)), None))
+    on_plane = f.createIfcSurfaceCurve(w.polyline((0, 20, 0), (0, 20, 1), (3, 20, 1), (3, 20, 0)), [wall_plane], "CURVE3D")
+    w.element("IfcRailing", "disk_surface_curve", disk(on_plane, 0.025, None, None, None))
     # Indexed poly curve: a line, a tangent quarter arc about (2, 6), a line.
     h = math.sqrt(0.5)
     pts = f.createIfcCartesianPointList3D(

@@ -3,7 +3,7 @@
 //! segments, 2D or 3D points), `IfcCompositeCurve` (segments with `SameSense`, nested),
 //! `IfcTrimmedCurve` of an `IfcCircle`, `IfcEllipse`, `IfcLine` or `IfcPolyline` (trimmed by
 //! parameter or by point), whole `IfcCircle` / `IfcEllipse` and B-spline curves (rational
-//! too, [`crate::bspline`]); [`Path::trimmed`] cuts a
+//! too, [`crate::bspline`]), and surface curves by their `Curve3D`; [`Path::trimmed`] cuts a
 //! path between two parameters (`StartParam` / `EndParam`). Arcs are chorded by the crate's
 //! rule, [`crate::curve::MAX_ARC_STEP`].
 //!
@@ -207,6 +207,14 @@ fn read(curve: Entity<'_>, units: &Units, depth: usize) -> Result<Path, GeomErro
         for (u, p) in c.sample_with_parameters(lo, hi) {
             out.push(p, u);
         }
+    } else if curve.is_a("IfcSurfaceCurve") {
+        // Also IfcIntersectionCurve and IfcSeamCurve: the curve in space, as IfcOpenShell
+        // reads them.
+        out = read(
+            required_ref(&curve, "Curve3D", "IfcCurve")?,
+            units,
+            depth + 1,
+        )?;
     } else {
         return Err(unsupported(&curve, "curve"));
     }
