@@ -28,7 +28,7 @@ IfcSurfaceCurveSweptAreaSolid (on a plane, a cylinder and a surface of linear ex
 IfcFixedReferenceSweptAreaSolid (with a Position) and the
 IFC4X3 IfcDirectrixDerivedReferenceSweptAreaSolid; an IfcArbitraryOpenProfileDef on a
 trimmed polyline and an IfcCenterLineProfileDef, both extruded; in IFC2X3, a bent bar as
-Revit writes reinforcement.
+Revit writes reinforcement and a crane rail (IfcCraneRailAShapeProfileDef) extruded.
 """
 
 import json
@@ -240,6 +240,13 @@ def author_ifc2x3(w):
     length = 2000 + 300 * math.pi / 2 + 1700
     w.element("IfcReinforcingBar", "disk_ifc2x3_mm_degrees",
               f.createIfcSweptDiskSolid(f.createIfcCompositeCurve(segs, False), 16.0, None, 0.0, length))
+    # A crane rail (IfcCraneRailAShapeProfileDef, 100 mm high, base 150 mm) 6 m long (upright).
+    rail = f.createIfcCraneRailAShapeProfileDef(
+        "AREA", None, f.createIfcAxis2Placement2D(w.pt(0, 45000), None),
+        100.0, 150.0, None, 60.0, 20.0, 30.0, 20.0, 100.0, 15.0, 30.0, 40.0, None)
+    w.element("IfcBeam", "crane_rail_ifc2x3",
+              f.createIfcExtrudedAreaSolid(rail, w.axis(0, 0, 0), f.createIfcDirection((0., 0., 1.)), 6000.0),
+              "SweptSolid")
 
 
 def summary(shape):
