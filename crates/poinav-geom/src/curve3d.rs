@@ -200,7 +200,7 @@ fn read(curve: Entity<'_>, units: &Units, depth: usize) -> Result<Path, GeomErro
         out = trimmed_curve(curve, units, depth)?;
     } else if curve.is_a("IfcCircle") || curve.is_a("IfcEllipse") {
         out = Conic::read(curve, units)?.arc(0.0, TAU, units.radians_per_unit);
-    } else if curve.is_a("IfcBSplineCurveWithKnots") {
+    } else if crate::bspline::is_curve(&curve) {
         // Rational ones too; the parameter is the curve's own (its knots' values).
         let c = crate::bspline::curve(curve, s)?;
         let (lo, hi) = c.basis.domain();

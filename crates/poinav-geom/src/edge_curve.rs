@@ -115,7 +115,7 @@ fn between(
                 t.transform_point3(DVec3::new(ra * u.cos(), rb * u.sin(), 0.0))
             })
             .collect())
-    } else if curve.is_a("IfcBSplineCurveWithKnots") {
+    } else if crate::bspline::is_curve(&curve) {
         let c = bspline::curve(curve, s)?;
         let (lo, hi) = c.basis.domain();
         if closed {
