@@ -7,14 +7,20 @@ Usage: .venv/bin/python tests/ifcos/alignment.py RAILWAY.ifc OUT.ifc
    circular arc, clothoid, line; a vertical layout of constant gradient, parabolic arc,
    circular arc, constant gradient; proxies placed along the gradient curve by IfcLinearPlacement at several
    distances and offsets (each a 2 x 1 x 0.5 m box off its origin, so orientation shows), and
-   one IfcSectionedSolidHorizontal over the clothoid and arc. The first four proxies are in
-   railway part West, the other three in East, the course in none (no storey, no building).
+   one IfcSectionedSolidHorizontal over the clothoid and arc; open surfaces (courses named
+   `surface ...`): IfcSectionedSurface of IFC4X3 IfcOpenCrossProfileDef sections (widths along
+   the slopes from an offset point, and horizontal widths) and of IfcArbitraryOpenProfileDef
+   sections, and an open cross profile extruded; sectioned solids along two
+   IfcOffsetCurveByDistances of the gradient curve (courses named `offset course ...`,
+   constant and growing offsets). The first four proxies are in railway part
+   West, the other three in East, the courses in none (no storey, no building).
 2. Meshes them, and a fixed sample of RAILWAY.ifc (IfcOpenShell needs about 1.6 s per track
    element there, so the whole file is out of reach): track elements spread over the track,
    two courses (sectioned solids) and a rail.
 
 Prints one JSON object: {"authored": {GlobalId: shape}, "railway": {"#id": shape}} where a
-shape is {class, matrix (4 x 4 row-major placement, m), min, max (world bounding box, m)}.
+shape is {class, name, matrix (4 x 4 row-major placement, m), min, max (world bounding box, m),
+area (of the triangles, m2)}.
 IfcOpenShell's own log output (it prints to stdout) is kept off the JSON.
 """
 
@@ -152,6 +158,78 @@ def author(path):
     course.Representation = f.createIfcProductDefinitionShape(
         Representations=[f.createIfcShapeRepresentation(body, "Body", "AdvancedSweptSolid", [solid])]
     )
+    cross = f.createIfcOpenCrossProfileDef(
+        ProfileType="CURVE",
+        HorizontalWidths=False,
+        Widths=[2.0, 3.0, 1.5],
+        Slopes=[-0.3, 0.0, 0.5],
+        OffsetPoint=f.createIfcCartesianPoint((-3.0, 0.2)),
+    )
+    level = f.createIfcOpenCrossProfileDef(
+        ProfileType="CURVE", HorizontalWidths=True, Widths=[2.0, 3.0, 1.5], Slopes=[-0.3, 0.0, 0.5]
+    )
+    ditch = f.createIfcArbitraryOpenProfileDef(
+        ProfileType="CURVE",
+        Curve=f.createIfcPolyline(
+            [f.createIfcCartesianPoint(c) for c in [(-4.0, 0.5), (-2.0, 0.0), (2.0, 0.0), (4.0, 0.5)]]
+        ),
+    )
+    surfaces = {
+        "surface cross slopes": f.createIfcSectionedSurface(
+            Directrix=curve,
+            CrossSections=[cross, cross],
+            CrossSectionPositions=[linear(60.0, 0.5, 0.3, 0.0), linear(260.0, -0.5, 0.0, 0.0)],
+        ),
+        "surface cross horizontal": f.createIfcSectionedSurface(
+            Directrix=curve, CrossSections=[level, level], CrossSectionPositions=[linear(60.0, 0, 0, 0), linear(260.0, 0, 0, 0)]
+        ),
+        "surface open profile": f.createIfcSectionedSurface(
+            Directrix=curve, CrossSections=[ditch, ditch], CrossSectionPositions=[linear(300.0, 0, 0, 0), linear(480.0, 0, 0, 0)]
+        ),
+        "surface cross extruded": f.createIfcExtrudedAreaSolid(
+            SweptArea=cross,
+            Position=f.createIfcAxis2Placement3D(Location=f.createIfcCartesianPoint((0.0, 0.0, 0.0))),
+            ExtrudedDirection=f.createIfcDirection((0.0, 0.0, 1.0)),
+            Depth=2.0,
+        ),
+    }
+    # Courses along offset curves (IfcOffsetCurveByDistances of the gradient curve): offsets
+    # 3 m left and 0.5 m up throughout, and offsets growing from 2 m to 6 m left.
+    def by_distance(d, lateral, vertical_offset):
+        return f.createIfcPointByDistanceExpression(
+            DistanceAlong=f.createIfcLengthMeasure(d),
+            OffsetLateral=lateral or None,
+            OffsetVertical=vertical_offset or None,
+            BasisCurve=curve,
+        )
+
+    beam = f.createIfcRectangleProfileDef(ProfileType="AREA", XDim=1.0, YDim=0.5)
+    for name, values in [
+        ("offset course", [(0.0, 3.0, 0.5), (500.0, 3.0, 0.5)]),
+        ("offset course widening", [(0.0, 2.0, 0.0), (500.0, 6.0, 0.0)]),
+    ]:
+        offset = f.createIfcOffsetCurveByDistances(
+            BasisCurve=curve, OffsetValues=[by_distance(*v) for v in values]
+        )
+        positions = [
+            f.createIfcAxis2PlacementLinear(
+                Location=f.createIfcPointByDistanceExpression(
+                    DistanceAlong=f.createIfcLengthMeasure(d), BasisCurve=offset
+                )
+            )
+            for d in (100.0, 300.0)
+        ]
+        surfaces[name] = f.createIfcSectionedSolidHorizontal(
+            Directrix=offset, CrossSections=[beam, beam], CrossSectionPositions=positions
+        )
+    for name, item in surfaces.items():
+        c = ifcopenshell.api.root.create_entity(f, ifc_class="IfcCourse", name=name)
+        c.ObjectPlacement = f.createIfcLocalPlacement(
+            RelativePlacement=f.createIfcAxis2Placement3D(Location=f.createIfcCartesianPoint((0.0, 0.0, 0.0)))
+        )
+        c.Representation = f.createIfcProductDefinitionShape(
+            Representations=[f.createIfcShapeRepresentation(body, "Body", "AdvancedSurface", [item])]
+        )
     f.write(path)
     return f
 
@@ -170,9 +248,12 @@ def shapes(f, products, key):
                 m = np.array(s.transformation.matrix, dtype=float).reshape((4, 4), order="F")
                 v = np.array(s.geometry.verts, dtype=float).reshape(-1, 3)
                 w = v @ m[:3, :3].T + m[:3, 3]
+                t = w[np.array(s.geometry.faces, dtype=int).reshape(-1, 3)]
                 e = f.by_id(s.id)
                 out[key(e)] = {
                     "class": e.is_a(),
+                    "name": e.Name,
+                    "area": float(np.linalg.norm(np.cross(t[:, 1] - t[:, 0], t[:, 2] - t[:, 0]), axis=1).sum() / 2.0),
                     "matrix": m.tolist(),
                     "min": w.min(axis=0).tolist(),
                     "max": w.max(axis=0).tolist(),

@@ -15,6 +15,12 @@ along y, all in one storey:
 - boolean results whose second operand cannot be made (Depth 0): DIFFERENCE, UNION and
   INTERSECTION, and a clipping whose half-space plane has a zero normal; IfcOpenShell keeps
   the first operand;
+- boolean results whose first operand cannot be made (Depth 0) or is a point: alone, nested
+  in differences (IfcOpenShell reads a run of differences as one list, the first operand then
+  the second operands from the outside in, and cuts the first of them it can make by the
+  others), under a union, and under a clipping (the half-space then heads the list and
+  IfcOpenShell keeps what the next solid has in the half-space's material);
+- a face of a surface model drawn as a star in one stroke (401 points, {401/2}): filled;
 - an IfcMirroredProfileDef (an L mirrored about its y axis) and the same as an
   IfcDerivedProfileDef with a mirroring operator;
 - an IfcCurveBoundedPlane (a 3 x 2 m rectangle with a 1 x 0.5 m hole, on a plane tilted
@@ -132,6 +138,36 @@ for op in ["DIFFERENCE", "UNION", "INTERSECTION"]:
 no_normal = f.createIfcHalfSpaceSolid(f.createIfcPlane(f.createIfcAxis2Placement3D(pt(0, 0, 2), d(0, 0, 0), None)), False)
 case("clipping_bad_plane", [f.createIfcBooleanClippingResult("DIFFERENCE", wall(), no_normal)])
 left_out["clipping_bad_plane"] = [no_normal.id()]
+
+# --- Boolean results whose first operand cannot be made (Depth 0) or holds no solid: left
+# out, the operands after it in IfcOpenShell's list take its place.
+bad = box(1, -0.5, 0, 1, 1.2, 0.0)
+case("first_operand_bad", [f.createIfcBooleanResult("DIFFERENCE", bad, box(0, 0, 0, 2, 1, 1))])
+left_out["first_operand_bad"] = [bad.id()]
+bad = box(1, -0.5, 0, 1, 1.2, 0.0)
+inner = f.createIfcBooleanResult("DIFFERENCE", bad, box(0, 0, 0, 2, 1, 1))
+case("first_operand_bad_nested", [f.createIfcBooleanResult("DIFFERENCE", inner, box(1, 0, 0, 2, 1, 1))])
+left_out["first_operand_bad_nested"] = [bad.id()]
+bad = box(1, -0.5, 0, 1, 1.2, 0.0)
+inner = f.createIfcBooleanResult("UNION", bad, box(0, 0, 0, 2, 1, 1))
+case("first_operand_bad_union_cut", [f.createIfcBooleanResult("DIFFERENCE", inner, box(0, 0, 0.5, 5, 1, 1))])
+left_out["first_operand_bad_union_cut"] = [bad.id()]
+bad = box(1, -0.5, 0, 1, 1.2, 0.0)
+inner = f.createIfcBooleanResult("DIFFERENCE", bad, box(0, 0, 0, 2, 1, 1))
+above = f.createIfcHalfSpaceSolid(f.createIfcPlane(ax(0.0, 0.0, 0.5)), False)
+case("first_operand_bad_clipped", [f.createIfcBooleanClippingResult("DIFFERENCE", inner, above)])
+left_out["first_operand_bad_clipped"] = [bad.id()]
+point = pt(0, 0, 0)
+case("first_operand_point", [f.createIfcBooleanResult("DIFFERENCE", point, box(0, 0, 0, 2, 1, 1))])
+left_out["first_operand_point"] = [point.id()]
+
+# --- A face of 401 points drawn as a star in one stroke ({401/2}), alone in a surface model:
+# IfcOpenShell fills it (nearly the unit disc).
+n = 401
+star_face = [pt(math.cos(2 * math.pi * (2 * i % n) / n), math.sin(2 * math.pi * (2 * i % n) / n), 0.0) for i in range(n)]
+loop = f.createIfcPolyLoop(star_face)
+face = f.createIfcFace([f.createIfcFaceOuterBound(loop, True)])
+case("star_face_401", [f.createIfcShellBasedSurfaceModel([f.createIfcOpenShell([face])])], kind="SurfaceModel")
 
 # --- Mirrored profiles.
 ell = f.createIfcArbitraryClosedProfileDef(

@@ -13,7 +13,8 @@ placed at its own spot, so placements count), all on one storey:
 - CSG: IfcSphere, IfcRightCircularCone and IfcRectangularPyramid alone (with Position),
   IfcCsgSolid differences (block less sphere, cylinder less cone), a union (block and a
   pyramid above it) and an intersection (block and sphere);
-- advanced breps: a quarter cylinder with an IfcCylindricalSurface face and IfcCircle edges;
+- advanced breps: a quarter cylinder with an IfcCylindricalSurface face and IfcCircle edges
+  (and the same with its arcs as IfcSurfaceCurves on the cylinder);
   the same with its curved face and arcs as rational B-splines (weights matter), and with
   its curved face on an IfcSurfaceOfLinearExtrusion of a rational B-spline arc or on an
   IfcSurfaceOfRevolution of a line; a box whose
@@ -227,11 +228,13 @@ def bspline_curve(points, weights=None):
     )
 
 
-def quarter_cylinder(rational, extrusion=False, revolution=False):
+def quarter_cylinder(rational, extrusion=False, revolution=False, surface_curves=False):
     """r = 1, h = 2 about z, in x >= 0, y >= 0; the curved face on a cylinder, a rational
     B-spline surface, a surface of linear extrusion of a rational B-spline quarter circle
-    (`extrusion`), or a surface of revolution of a line about z (`revolution`)."""
+    (`extrusion`), or a surface of revolution of a line about z (`revolution`); with
+    `surface_curves` the arcs are IfcSurfaceCurves on the cylinder (their Curve3D a circle)."""
     b = Brep()
+    cylinder = f.createIfcCylindricalSurface(ax3(), 1.0)
     for z, s in [(0, "0"), (2, "1")]:
         b.vertex("O" + s, 0, 0, z)
         b.vertex("A" + s, 1, 0, z)
@@ -242,6 +245,8 @@ def quarter_cylinder(rational, extrusion=False, revolution=False):
             if rational
             else circle(z)
         )
+        if surface_curves:
+            arc = f.createIfcSurfaceCurve(arc, [cylinder], "CURVE3D")
         b.edge("oa" + s, "O" + s, "A" + s)
         b.edge("ab" + s, "A" + s, "B" + s, arc)
         b.edge("bo" + s, "B" + s, "O" + s)
@@ -266,7 +271,7 @@ def quarter_cylinder(rational, extrusion=False, revolution=False):
         swept = f.createIfcArbitraryOpenProfileDef("CURVE", None, arc)
         curved = f.createIfcSurfaceOfLinearExtrusion(swept, ax3(), d3(0, 0, 1), 2.0)
     else:
-        curved = f.createIfcCylindricalSurface(ax3(), 1.0)
+        curved = cylinder
     faces = [
         b.face(plane(0, 0, 0, (0, 0, -1), (1, 0, 0)), ["-bo0", "-ab0", "-oa0"]),
         b.face(plane(0, 0, 2, (0, 0, 1), (1, 0, 0)), ["oa1", "ab1", "bo1"]),
@@ -279,6 +284,12 @@ def quarter_cylinder(rational, extrusion=False, revolution=False):
 
 case("advanced quarter cylinder", [quarter_cylinder(False)], "AdvancedBrep", volume=math.pi / 2)
 case("advanced rational quarter cylinder", [quarter_cylinder(True)], "AdvancedBrep", volume=math.pi / 2)
+case(
+    "advanced quarter cylinder, surface curves",
+    [quarter_cylinder(False, surface_curves=True)],
+    "AdvancedBrep",
+    volume=math.pi / 2,
+)
 case(
     "advanced revolution quarter cylinder",
     [quarter_cylinder(False, revolution=True)],

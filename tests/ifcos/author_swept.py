@@ -15,11 +15,13 @@ settings) and prints one JSON object mapping each case name to
   volume         the mesh's signed volume (divergence theorem), m3
   reference      for cases IfcOpenShell 0.9 does not mesh as the schema says (it ignores
                  StartParam/EndParam and the Thickness of centre line profiles, fails on
-                 FilletRadius, and takes the parameters of a trimmed polyline as lengths
-                 instead of segment index plus fraction), the case whose element has the
+                 FilletRadius, takes the parameters of a trimmed polyline as lengths
+                 instead of segment index plus fraction, and draws a Bezier curve as its
+                 chord), the case whose element has the
                  geometry the schema defines, written out explicitly
 
-The cases: swept disks along a 3D polyline with posts (a railing), a tube (InnerRadius) along
+The cases: swept disks along a 3D polyline with posts (a railing; again along an
+IfcSurfaceCurve whose Curve3D is that polyline), a tube (InnerRadius) along
 a non-planar polyline, a composite curve of a line, a trimmed circle arc and a reversed
 (SameSense .F.) polyline, an indexed poly curve with an arc, a whole circle (a ring), a circle
 trimmed by points; IfcSweptDiskSolidPolygonal with FilletRadius; StartParam/EndParam trims;
@@ -27,7 +29,9 @@ IfcSurfaceCurveSweptAreaSolid (on a plane, a cylinder and a surface of linear ex
 IfcFixedReferenceSweptAreaSolid (with a Position) and the
 IFC4X3 IfcDirectrixDerivedReferenceSweptAreaSolid; an IfcArbitraryOpenProfileDef on a
 trimmed polyline and an IfcCenterLineProfileDef, both extruded; in IFC2X3, a bent bar as
-Revit writes reinforcement.
+Revit writes reinforcement, a crane rail (IfcCraneRailAShapeProfileDef) extruded and a
+profile bounded by an IfcBezierCurve (IfcOpenShell 0.9 draws its chord: compared with a
+reference).
 """
 
 import json
@@ -123,6 +127,11 @@ def author_ifc4(w):
         f.createIfcCompositeCurveSegment("CONTINUOUS", False, w.polyline((7, 1, 0.5), (9, 1, 0.5))),
     ]
     w.element("IfcPipeSegment", "disk_composite", disk(f.createIfcCompositeCurve(segs, False), 0.05, None, None, None))
+    # The same railing's handrail along an IfcSurfaceCurve (its Curve3D a polyline, on the
+    # plane y = 20): the curve in space is swept.
+    wall_plane = f.createIfcPlane(f.createIfcAxis2Placement3D(w.pt(0, 20, 0), f.createIfcDirection((0., 1., 0.)), None))
+    on_plane = f.createIfcSurfaceCurve(w.polyline((0, 20, 0), (0, 20, 1), (3, 20, 1), (3, 20, 0)), [wall_plane], "CURVE3D")
+    w.element("IfcRailing", "disk_surface_curve", disk(on_plane, 0.025, None, None, None))
     # Indexed poly curve: a line, a tangent quarter arc about (2, 6), a line.
     h = math.sqrt(0.5)
     pts = f.createIfcCartesianPointList3D(
@@ -234,6 +243,34 @@ def author_ifc2x3(w):
     length = 2000 + 300 * math.pi / 2 + 1700
     w.element("IfcReinforcingBar", "disk_ifc2x3_mm_degrees",
               f.createIfcSweptDiskSolid(f.createIfcCompositeCurve(segs, False), 16.0, None, 0.0, length))
+    # A crane rail (IfcCraneRailAShapeProfileDef, 100 mm high, base 150 mm) 6 m long (upright).
+    rail = f.createIfcCraneRailAShapeProfileDef(
+        "AREA", None, f.createIfcAxis2Placement2D(w.pt(0, 45000), None),
+        100.0, 150.0, None, 60.0, 20.0, 30.0, 20.0, 100.0, 15.0, 30.0, 40.0, None)
+    # A slab edge drawn with an IfcBezierCurve of two quadratic pieces (IFC2X3 only), closed
+    # by a polyline; IfcOpenShell 0.9 draws its chord instead, so the reference is the same
+    # curve written out as a polyline of 200 points per piece.
+    arc_pts = [(2000, 50000), (2000, 51000), (1500, 51500), (1000, 52000), (0, 52000)]
+
+    def bezier_point(a, b, c, t):
+        return tuple((1 - t) ** 2 * a[i] + 2 * t * (1 - t) * b[i] + t * t * c[i] for i in range(2))
+
+    sampled = [bezier_point(*arc_pts[2 * k:2 * k + 3], i / 200) for k in range(2) for i in range(200)]
+    for name, arc in [
+        ("bezier_profile_ifc2x3",
+         f.createIfcBezierCurve(2, [w.pt(*q) for q in arc_pts], "UNSPECIFIED", False, False)),
+        ("bezier_profile_ifc2x3_reference", w.polyline(*sampled, arc_pts[-1])),
+    ]:
+        closing = w.polyline((0, 52000), (0, 50000), (2000, 50000))
+        outline = f.createIfcCompositeCurve([f.createIfcCompositeCurveSegment("CONTINUOUS", True, arc),
+                                             f.createIfcCompositeCurveSegment("CONTINUOUS", True, closing)], False)
+        w.element("IfcSlab", name,
+                  f.createIfcExtrudedAreaSolid(f.createIfcArbitraryClosedProfileDef("AREA", None, outline),
+                                               w.axis(0, 0, 0), f.createIfcDirection((0., 0., 1.)), 200.0),
+                  "SweptSolid")
+    w.element("IfcBeam", "crane_rail_ifc2x3",
+              f.createIfcExtrudedAreaSolid(rail, w.axis(0, 0, 0), f.createIfcDirection((0., 0., 1.)), 6000.0),
+              "SweptSolid")
 
 
 def summary(shape):

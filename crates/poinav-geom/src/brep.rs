@@ -11,7 +11,7 @@ use poinav_ifc::{Entity, EntityId};
 use crate::cartesian_point::point3;
 use crate::error::{missing, unsupported, GeomError};
 use crate::mesh::Mesh;
-use crate::triangulation::{newell_normal, triangulate_3d};
+use crate::triangulation::{newell_normal, triangulate_3d_resolving};
 use crate::unit_assignment::Units;
 
 /// Most faces one product's breps may have.
@@ -98,7 +98,7 @@ impl FaceMesher {
         });
         let outer_loop = loops.swap_remove(outer);
         let holes: Vec<Vec<DVec3>> = loops.iter().map(|l| l.2.clone()).collect();
-        let Some(tris) = triangulate_3d(&outer_loop.2, &holes) else {
+        let Some((added, tris)) = triangulate_3d_resolving(&outer_loop.2, &holes) else {
             return Ok(());
         };
         let ids: Vec<EntityId> = std::iter::once(&outer_loop)
@@ -109,7 +109,7 @@ impl FaceMesher {
             .chain(loops.iter())
             .flat_map(|l| l.2.iter().copied())
             .collect();
-        let index: Vec<u32> = ids
+        let mut index: Vec<u32> = ids
             .iter()
             .zip(&pts)
             .map(|(id, p)| {
@@ -119,6 +119,11 @@ impl FaceMesher {
                 })
             })
             .collect();
+        // Where bounds cross: the crossing points, this face's own.
+        for p in added {
+            self.mesh.positions.push(p);
+            index.push(self.mesh.positions.len() as u32 - 1);
+        }
         self.mesh.triangles.extend(
             tris.iter()
                 .map(|t| t.map(|i| index[i as usize]))

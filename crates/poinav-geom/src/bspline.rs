@@ -1,5 +1,7 @@
 //! B-spline curves and surfaces (`IfcBSplineCurveWithKnots`, `IfcBSplineSurfaceWithKnots` and
-//! their rational subtypes): knot vectors from knots and multiplicities, basis functions by
+//! their rational subtypes; IFC2X3's `IfcBezierCurve` and `IfcRationalBezierCurve`, whose
+//! knots are implied: Bezier pieces of its degree end to end): knot vectors from knots and
+//! multiplicities, basis functions by
 //! the Cox-de Boor recursion, points from homogeneous control points (weights), and the
 //! curve's points sampled by the chord rule ([`crate::chord_rule`]).
 
@@ -337,8 +339,54 @@ fn points(e: &Entity<'_>, list: &Value<'_>, s: f64) -> Result<Vec<DVec3>, GeomEr
         .collect()
 }
 
-/// An `IfcBSplineCurveWithKnots` (rational or not) in metres (`s` metres per file unit).
+/// True for the B-spline curves [`curve`] reads: with knots, or Bezier (rational or not).
+pub fn is_curve(e: &Entity<'_>) -> bool {
+    e.is_a("IfcBSplineCurveWithKnots") || e.is_a("IfcBezierCurve")
+}
+
+/// An `IfcBSplineCurveWithKnots` or (IFC2X3) `IfcBezierCurve`, rational or not, in metres
+/// (`s` metres per file unit). A Bezier curve of degree p with k p + 1 control points is k
+/// Bezier pieces end to end: knots 0 to k, the ends p + 1 times, the others p times (one
+/// piece: what IfcOpenShell's Bezier mapping uses).
 pub fn curve(e: Entity<'_>, s: f64) -> Result<Curve, GeomError> {
+    if e.is_a("IfcBezierCurve") {
+        let p = degree(&e, "Degree")?;
+        let list = e
+            .get("ControlPointsList")
+            .ok_or_else(|| missing(&e, "ControlPointsList"))?;
+        let pts = points(&e, &list, s)?;
+        if p == 0 || pts.len() < p + 1 || (pts.len() - 1) % p != 0 {
+            return Err(degenerate(
+                &e,
+                "Bezier control points do not make whole pieces",
+            ));
+        }
+        let pieces = (pts.len() - 1) / p;
+        let knots: Vec<f64> = (0..=pieces).map(|k| k as f64).collect();
+        let mult: Vec<i64> = (0..=pieces)
+            .map(|k| {
+                if k == 0 || k == pieces {
+                    p as i64 + 1
+                } else {
+                    p as i64
+                }
+            })
+            .collect();
+        let weights = if e.is_a("IfcRationalBezierCurve") {
+            Some(
+                e.get("WeightsData")
+                    .as_ref()
+                    .and_then(numbers)
+                    .ok_or_else(|| missing(&e, "WeightsData"))?,
+            )
+        } else {
+            None
+        };
+        let k = knot_vector(&knots, &mult)
+            .ok_or_else(|| degenerate(&e, "degree too high for a Bezier curve"))?;
+        return Curve::new(p, k, &pts, weights.as_deref())
+            .ok_or_else(|| degenerate(&e, "degree, control points or weights do not fit"));
+    }
     if !e.is_a("IfcBSplineCurveWithKnots") {
         return Err(crate::error::unsupported(
             &e,

@@ -77,7 +77,7 @@ fn points(curve: Entity<'_>, units: &Units, depth: usize) -> Result<Vec<DVec2>, 
         trimmed_curve(curve, units)
     } else if curve.is_a("IfcCircle") || curve.is_a("IfcEllipse") {
         Ok(flat(&crate::curve3d::path(curve, units)?))
-    } else if curve.is_a("IfcBSplineCurveWithKnots") {
+    } else if crate::bspline::is_curve(&curve) {
         let c = crate::bspline::curve(curve, s)?;
         Ok(c.sample().into_iter().map(|p| p.truncate()).collect())
     } else {

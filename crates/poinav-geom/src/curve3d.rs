@@ -3,7 +3,7 @@
 //! segments, 2D or 3D points), `IfcCompositeCurve` (segments with `SameSense`, nested),
 //! `IfcTrimmedCurve` of an `IfcCircle`, `IfcEllipse`, `IfcLine` or `IfcPolyline` (trimmed by
 //! parameter or by point), whole `IfcCircle` / `IfcEllipse` and B-spline curves (rational
-//! too, [`crate::bspline`]); [`Path::trimmed`] cuts a
+//! too, [`crate::bspline`]), and surface curves by their `Curve3D`; [`Path::trimmed`] cuts a
 //! path between two parameters (`StartParam` / `EndParam`). Arcs are chorded by the crate's
 //! rule, [`crate::curve::MAX_ARC_STEP`].
 //!
@@ -200,13 +200,21 @@ fn read(curve: Entity<'_>, units: &Units, depth: usize) -> Result<Path, GeomErro
         out = trimmed_curve(curve, units, depth)?;
     } else if curve.is_a("IfcCircle") || curve.is_a("IfcEllipse") {
         out = Conic::read(curve, units)?.arc(0.0, TAU, units.radians_per_unit);
-    } else if curve.is_a("IfcBSplineCurveWithKnots") {
+    } else if crate::bspline::is_curve(&curve) {
         // Rational ones too; the parameter is the curve's own (its knots' values).
         let c = crate::bspline::curve(curve, s)?;
         let (lo, hi) = c.basis.domain();
         for (u, p) in c.sample_with_parameters(lo, hi) {
             out.push(p, u);
         }
+    } else if curve.is_a("IfcSurfaceCurve") {
+        // Also IfcIntersectionCurve and IfcSeamCurve: the curve in space, as IfcOpenShell
+        // reads them.
+        out = read(
+            required_ref(&curve, "Curve3D", "IfcCurve")?,
+            units,
+            depth + 1,
+        )?;
     } else {
         return Err(unsupported(&curve, "curve"));
     }

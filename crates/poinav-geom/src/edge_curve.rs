@@ -1,7 +1,9 @@
 //! `IfcEdgeCurve`: the points of an edge of an advanced brep from its start vertex to its end
 //! vertex (both exact) along its `EdgeGeometry`: `IfcLine`, `IfcPolyline`, `IfcCircle` and
 //! `IfcEllipse` (arcs by [`MAX_ARC_STEP`]), B-spline curves (rational too, by the chord
-//! rule) and `IfcTrimmedCurve`s of those; `SameSense` false runs against the curve.
+//! rule), `IfcTrimmedCurve`s of those and surface curves (`IfcSurfaceCurve`,
+//! `IfcIntersectionCurve`, `IfcSeamCurve`: their `Curve3D`); `SameSense` false runs against
+//! the curve.
 
 use std::f64::consts::TAU;
 
@@ -113,7 +115,7 @@ fn between(
                 t.transform_point3(DVec3::new(ra * u.cos(), rb * u.sin(), 0.0))
             })
             .collect())
-    } else if curve.is_a("IfcBSplineCurveWithKnots") {
+    } else if crate::bspline::is_curve(&curve) {
         let c = bspline::curve(curve, s)?;
         let (lo, hi) = c.basis.domain();
         if closed {
@@ -130,6 +132,11 @@ fn between(
         let basis = required_ref(&curve, "BasisCurve", "IfcCurve")?;
         let agree = curve.get("SenseAgreement").and_then(|v| v.as_enum()) != Some("F");
         between(basis, a, b, sense == agree, s, depth + 1)
+    } else if curve.is_a("IfcSurfaceCurve") {
+        // Also IfcIntersectionCurve and IfcSeamCurve: the curve in space, as IfcOpenShell
+        // reads them (the curves on the surfaces, AssociatedGeometry, are not needed).
+        let space = required_ref(&curve, "Curve3D", "IfcCurve")?;
+        between(space, a, b, sense, s, depth + 1)
     } else {
         Err(unsupported(&curve, "edge curve"))
     }

@@ -7,7 +7,7 @@ use poinav_ifc::{Entity, Value};
 use crate::cartesian_point::point_list;
 use crate::error::{degenerate, missing, required_ref, unsupported, GeomError};
 use crate::mesh::Mesh;
-use crate::triangulation::triangulate_3d;
+use crate::triangulation::triangulate_3d_resolving;
 
 /// The mesh of a tessellated face set in metres (`s` metres per file unit), and whether the
 /// file says it is closed (`Closed`; `$` counts as closed for triangulated sets, as in IFC).
@@ -69,14 +69,19 @@ pub fn face_set_mesh(item: Entity<'_>, s: f64) -> Result<(Mesh, bool), GeomError
             }
             let pos = |r: &[u32]| r.iter().map(|&i| points[i as usize]).collect::<Vec<_>>();
             let hole_pts: Vec<Vec<DVec3>> = holes.iter().map(|h| pos(h)).collect();
-            let Some(tris) = triangulate_3d(&pos(&outer), &hole_pts) else {
+            let Some((added, tris)) = triangulate_3d_resolving(&pos(&outer), &hole_pts) else {
                 continue;
             };
-            let all: Vec<u32> = outer
+            let mut all: Vec<u32> = outer
                 .iter()
                 .chain(holes.iter().flatten())
                 .copied()
                 .collect();
+            // Where bounds cross: the crossing points, this face's own.
+            for p in added {
+                mesh.positions.push(p);
+                all.push(mesh.positions.len() as u32 - 1);
+            }
             mesh.triangles.extend(
                 tris.iter()
                     .map(|t| t.map(|i| all[i as usize]))

@@ -1,7 +1,9 @@
 //! The basis curves of linear referencing, evaluated by distance along: `IfcCompositeCurve` of
 //! `IfcCurveSegment`s (an alignment in plan), `IfcGradientCurve` (that plan curve with its
 //! vertical segments: constant gradient, parabolic and circular arcs, as distance along against
-//! height) and `IfcSegmentedReferenceCurve` (cant is not applied: its base curve stands for it).
+//! height), `IfcSegmentedReferenceCurve` (cant is not applied: its base curve stands for it)
+//! and `IfcOffsetCurveByDistances` (its basis curve with the lateral and vertical offsets of
+//! its `OffsetValues`, interpolated linearly by distance along, constant past either end).
 //! Any other `IfcCurve` [`crate::curve`] reads is taken as a polyline in plan.
 //!
 //! Distance along a gradient curve is measured in plan, as IfcOpenShell does; past either end a
@@ -146,12 +148,66 @@ pub struct BasisCurve {
     plan: Plan,
     vertical: Option<Vertical>,
     metres_per_unit: f64,
+    /// Offset curves' offsets, innermost first: (distance along in file units, lateral and
+    /// vertical offsets in metres), by distance.
+    offsets: Vec<Vec<(f64, f64, f64)>>,
+}
+
+/// A number of an `IfcPointByDistanceExpression` (`$` is zero unless `required`).
+fn expression_number(e: &Entity<'_>, name: &'static str, required: bool) -> Result<f64, GeomError> {
+    match e.get(name) {
+        None if !required => Ok(0.0),
+        v => v
+            .and_then(|v| v.as_f64())
+            .filter(|x| x.is_finite())
+            .ok_or_else(|| missing(e, name)),
+    }
+}
+
+/// The lateral and vertical offsets at distance `d` of one offset curve's `offsets`.
+fn offset_at(offsets: &[(f64, f64, f64)], d: f64) -> (f64, f64) {
+    let i = offsets.partition_point(|o| o.0 <= d);
+    if i == 0 {
+        return (offsets[0].1, offsets[0].2);
+    }
+    if i == offsets.len() {
+        let o = offsets[i - 1];
+        return (o.1, o.2);
+    }
+    let (a, b) = (offsets[i - 1], offsets[i]);
+    let t = if b.0 > a.0 {
+        (d - a.0) / (b.0 - a.0)
+    } else {
+        0.0
+    };
+    (a.1 + (b.1 - a.1) * t, a.2 + (b.2 - a.2) * t)
 }
 
 impl BasisCurve {
     /// Reads `curve` (see the module documentation for the kinds).
     pub fn read(curve: Entity<'_>, units: &Units) -> Result<BasisCurve, GeomError> {
         let metres_per_unit = units.metres_per_unit;
+        if curve.is_a("IfcOffsetCurveByDistances") {
+            let mut basis =
+                BasisCurve::read(required_ref(&curve, "BasisCurve", "IfcCurve")?, units)?;
+            let mut offsets = Vec::new();
+            for v in curve.get_refs("OffsetValues") {
+                if !v.is_a("IfcPointByDistanceExpression") {
+                    return Err(unsupported(&v, "expected an IfcPointByDistanceExpression"));
+                }
+                offsets.push((
+                    expression_number(&v, "DistanceAlong", true)?,
+                    expression_number(&v, "OffsetLateral", false)? * metres_per_unit,
+                    expression_number(&v, "OffsetVertical", false)? * metres_per_unit,
+                ));
+            }
+            if offsets.is_empty() {
+                return Err(missing(&curve, "OffsetValues"));
+            }
+            offsets.sort_by(|a, b| a.0.total_cmp(&b.0));
+            basis.offsets.push(offsets);
+            return Ok(basis);
+        }
         if curve.is_a("IfcSegmentedReferenceCurve") {
             return BasisCurve::read(required_ref(&curve, "BaseCurve", "IfcCurve")?, units);
         }
@@ -170,6 +226,7 @@ impl BasisCurve {
                 plan,
                 vertical: Some(Vertical { segments }),
                 metres_per_unit,
+                offsets: Vec::new(),
             });
         }
         if curve.is_a("IfcCompositeCurve")
@@ -182,6 +239,7 @@ impl BasisCurve {
                 plan: Plan::Segments(Chain::read(curve)?),
                 vertical: None,
                 metres_per_unit,
+                offsets: Vec::new(),
             });
         }
         if !curve.is_a("IfcCurve") {
@@ -203,6 +261,7 @@ impl BasisCurve {
             plan: Plan::Polyline { points, along },
             vertical: None,
             metres_per_unit,
+            offsets: Vec::new(),
         })
     }
 
@@ -215,11 +274,17 @@ impl BasisCurve {
             .map_or((0.0, 0.0), |v| v.at(distance));
         let tangent = DVec3::new(f.tangent.x, f.tangent.y, slope).normalize();
         let left = DVec3::new(-f.tangent.y, f.tangent.x, 0.0);
+        let normal = tangent.cross(left);
+        let mut origin = f.point.extend(z) * self.metres_per_unit;
+        for o in &self.offsets {
+            let (lateral, vertical) = offset_at(o, distance);
+            origin += left * lateral + normal * vertical;
+        }
         Frame3 {
-            origin: f.point.extend(z) * self.metres_per_unit,
+            origin,
             tangent,
             left,
-            normal: tangent.cross(left),
+            normal,
         }
     }
 

@@ -1,13 +1,16 @@
 //! Profiles bounded by an open curve: `IfcCenterLineProfileDef` (the area `Thickness` wide
 //! around its centre line: both sides offset by half the thickness, corners mitred, ends
-//! square; a closed centre line gives a ring) and `IfcArbitraryOpenProfileDef` extruded (a
-//! surface, not a solid: one quad per segment of the curve, meshed as an open part).
+//! square; a closed centre line gives a ring), `IfcArbitraryOpenProfileDef` and IFC4X3's
+//! `IfcOpenCrossProfileDef` (widths and slopes from an offset point) as polylines, and open
+//! profiles extruded (a surface, not a solid: one quad per segment of the curve, meshed as an
+//! open part).
 
 use glam::DVec2;
 use poinav_ifc::Entity;
 
+use crate::cartesian_point::point2;
 use crate::curve;
-use crate::error::{degenerate, missing, required_ref, GeomError};
+use crate::error::{degenerate, missing, required_ref, unsupported, GeomError};
 use crate::extrusion::extrusion_frame;
 use crate::mesh::Mesh;
 use crate::polygon;
@@ -101,25 +104,96 @@ fn offsets(pts: &[DVec2], half: f64, closed: bool) -> Option<Vec<DVec2>> {
     )
 }
 
-/// True for an `IfcExtrudedAreaSolid` (not tapered) of an `IfcArbitraryOpenProfileDef` other
-/// than a centre line profile: a surface.
-pub fn is_open_profile_extrusion(item: &Entity<'_>) -> bool {
-    item.is_a("IfcExtrudedAreaSolid")
-        && !item.is_a("IfcExtrudedAreaSolidTapered")
-        && item.get_ref("SweptArea").is_some_and(|p| {
-            p.is_a("IfcArbitraryOpenProfileDef") && !p.is_a("IfcCenterLineProfileDef")
-        })
+/// True for a profile bounded by an open curve that bounds no area: an
+/// `IfcArbitraryOpenProfileDef` other than a centre line profile, or an
+/// `IfcOpenCrossProfileDef`.
+pub fn is_open_profile(p: &Entity<'_>) -> bool {
+    (p.is_a("IfcArbitraryOpenProfileDef") && !p.is_a("IfcCenterLineProfileDef"))
+        || p.is_a("IfcOpenCrossProfileDef")
 }
 
-/// The open surface of an extruded `IfcArbitraryOpenProfileDef`, in the representation's
-/// coordinates (metres), `Position` applied.
-pub fn extruded_open_profile(item: Entity<'_>, units: &Units) -> Result<Mesh, GeomError> {
-    let profile = required_ref(&item, "SweptArea", "IfcArbitraryOpenProfileDef")?;
-    let curve = required_ref(&profile, "Curve", "IfcCurve")?;
-    let pts = curve::polyline(curve, units)?;
+/// The polyline of an open profile ([`is_open_profile`]) in metres, at least two points.
+///
+/// An `IfcOpenCrossProfileDef` starts at its `OffsetPoint` (else the origin) and goes on by
+/// each of its `Widths` at the angle of the matching `Slopes` entry, as IfcOpenShell 0.9 reads
+/// it: along the slope (x grows by the width times the cosine, y by the width times the sine),
+/// or with `HorizontalWidths` the width is horizontal (x falls by it, y by the width times the
+/// tangent). Its `ProfileType` must be `CURVE`.
+pub fn open_profile_points(profile: Entity<'_>, units: &Units) -> Result<Vec<DVec2>, GeomError> {
+    let pts = if profile.is_a("IfcOpenCrossProfileDef") {
+        cross_profile_points(profile, units)?
+    } else if is_open_profile(&profile) {
+        curve::polyline(required_ref(&profile, "Curve", "IfcCurve")?, units)?
+    } else {
+        return Err(unsupported(&profile, "expected an open profile"));
+    };
     if pts.len() < 2 {
         return Err(degenerate(&profile, "open profile has no length"));
     }
+    Ok(pts)
+}
+
+fn cross_profile_points(profile: Entity<'_>, units: &Units) -> Result<Vec<DVec2>, GeomError> {
+    if profile.get("ProfileType").and_then(|v| v.as_enum()) != Some("CURVE") {
+        return Err(degenerate(
+            &profile,
+            "ProfileType of an open cross profile is not CURVE",
+        ));
+    }
+    let numbers = |name: &'static str| -> Result<Vec<f64>, GeomError> {
+        profile
+            .get(name)
+            .as_ref()
+            .and_then(|v| v.as_list())
+            .and_then(|l| {
+                l.iter()
+                    .map(|x| x.as_f64().filter(|x| x.is_finite()))
+                    .collect::<Option<Vec<f64>>>()
+            })
+            .ok_or_else(|| missing(&profile, name))
+    };
+    let (widths, slopes) = (numbers("Widths")?, numbers("Slopes")?);
+    if widths.len() != slopes.len() {
+        return Err(degenerate(&profile, "Widths and Slopes differ in length"));
+    }
+    let horizontal = profile.get("HorizontalWidths").and_then(|v| v.as_enum()) == Some("T");
+    let s = units.metres_per_unit;
+    let mut p = match profile.get_ref("OffsetPoint") {
+        Some(o) => point2(o)? * s,
+        None => DVec2::ZERO,
+    };
+    let mut out = vec![p];
+    for (w, slope) in widths.into_iter().zip(slopes) {
+        let w = w * s;
+        let a = slope * units.radians_per_unit;
+        p += if horizontal {
+            DVec2::new(-w, -w * a.tan())
+        } else {
+            DVec2::new(w * a.cos(), w * a.sin())
+        };
+        if !p.is_finite() {
+            return Err(degenerate(&profile, "a slope is vertical"));
+        }
+        out.push(p);
+    }
+    Ok(out)
+}
+
+/// True for an `IfcExtrudedAreaSolid` (not tapered) of an open profile ([`is_open_profile`]):
+/// a surface.
+pub fn is_open_profile_extrusion(item: &Entity<'_>) -> bool {
+    item.is_a("IfcExtrudedAreaSolid")
+        && !item.is_a("IfcExtrudedAreaSolidTapered")
+        && item
+            .get_ref("SweptArea")
+            .is_some_and(|p| is_open_profile(&p))
+}
+
+/// The open surface of an extruded open profile, in the representation's coordinates
+/// (metres), `Position` applied.
+pub fn extruded_open_profile(item: Entity<'_>, units: &Units) -> Result<Mesh, GeomError> {
+    let profile = required_ref(&item, "SweptArea", "IfcProfileDef")?;
+    let pts = open_profile_points(profile, units)?;
     let (position, sweep) = extrusion_frame(item, units)?;
     let n = pts.len() as u32;
     let mut mesh = Mesh::default();

@@ -1,6 +1,6 @@
 //! `IfcParameterizedProfileDef`: rectangles (plain, rounded, hollow), circles (plain, hollow),
-//! ellipses, trapezia and the steel shapes I, L, T, U, C and Z, as polygons with holes in the
-//! profile's own coordinates (metres, before its `Position`).
+//! ellipses, trapezia, the steel shapes I, L, T, U, C and Z and IFC2X3's crane rail A shape,
+//! as polygons with holes in the profile's own coordinates (metres, before its `Position`).
 //!
 //! Shapes follow the IFC definitions (origin at the centre of the bounding box, as
 //! IfcOpenShell does). Rounded corners of rectangles are drawn as arcs; the fillet and edge
@@ -81,6 +81,28 @@ pub(crate) fn shape(profile: Entity<'_>, s: f64) -> Result<Shape, GeomError> {
             ],
             vec![],
         ))
+    } else if profile.is_a("IfcCraneRailAShapeProfileDef") {
+        // IFC2X3: the 14-point outline IfcOpenShell 0.9 draws (head, web, sloped base; no
+        // radii). (IfcOpenShell does not mesh the F shape.)
+        let (oh, hw, wt) = (
+            dim("OverallHeight")? / 2.0,
+            dim("HeadWidth")? / 2.0,
+            dim("WebThickness")? / 2.0,
+        );
+        let (bw2, bw4) = (dim("BaseWidth2")? / 2.0, dim("BaseWidth4")? / 2.0);
+        let (hd2, hd3) = (dim("HeadDepth2")?, dim("HeadDepth3")?);
+        let (bd1, bd2, bd3) = (dim("BaseDepth1")?, dim("BaseDepth2")?, dim("BaseDepth3")?);
+        let left = [
+            p(-hw, oh),
+            p(-hw, oh - hd3),
+            p(-wt, oh - hd2),
+            p(-wt, -oh + bd2),
+            p(-bw4, -oh + bd3),
+            p(-bw2, -oh + bd1),
+            p(-bw2, -oh),
+        ];
+        let right = left.iter().rev().map(|q| p(-q.x, q.y));
+        Ok((left.iter().copied().chain(right).collect(), vec![]))
     } else if profile.is_a("IfcAsymmetricIShapeProfileDef") {
         // IFC4 names first, IFC2X3 names (OverallWidth = bottom flange) as the fallback.
         let d = dim("OverallDepth")?;

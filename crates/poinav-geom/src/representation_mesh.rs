@@ -1,9 +1,10 @@
 //! The items of an `IfcShapeRepresentation` as triangle meshes in the representation's
 //! coordinates (metres): extrusions (tapered too; of open profiles: surfaces), revolutions,
-//! swept disks and areas swept along a directrix, sectioned solids along alignments, faceted
-//! and advanced breps, surface models, tessellated face sets, boxes and CSG primitives,
-//! boolean results (clipping by half-spaces, differences, unions and intersections of solids)
-//! and mapped items (nested, with any
+//! swept disks and areas swept along a directrix, sectioned solids and surfaces along
+//! alignments, faceted and advanced breps, surface models, tessellated face sets, boxes and
+//! CSG primitives, boolean results (clipping by half-spaces, differences, unions and
+//! intersections of solids; an operand that cannot be made is left out with a warning, as
+//! IfcOpenShell leaves it out) and mapped items (nested, with any
 //! `IfcCartesianTransformationOperator`, mirrored or non-uniformly scaled).
 //!
 //! Work is bounded: at most [`MAX_ITEMS`] items and [`MAX_TRIANGLES`] triangles per
@@ -29,13 +30,13 @@ use crate::error::{degenerate, left_uncut, missing, required_ref, unsupported, G
 use crate::extrusion::{extrude, extruded_area_solid};
 use crate::face_set::face_set_mesh;
 use crate::gradient_curve::BasisCurve;
-use crate::half_space::half_space;
+use crate::half_space::{half_space, HalfSpace};
 use crate::mesh::Mesh;
 use crate::open_profile::{extruded_open_profile, is_open_profile_extrusion};
 use crate::parameterized_profile::ellipse;
 use crate::profile::ProfileArea;
 use crate::revolve::revolved_area_solid;
-use crate::sectioned_solid::sectioned_solid_horizontal;
+use crate::sectioned_solid::{sectioned_solid_horizontal, sectioned_surface};
 use crate::surface_style::item_colour;
 use crate::swept_area::{directrix_swept_area_solid, is_directrix_swept_area_solid};
 use crate::swept_disk::swept_disk_solid;
@@ -211,13 +212,17 @@ impl ItemMesher {
         } else if item.is_a("IfcAdvancedBrep") {
             let mesh = advanced_brep(item, &self.units)?;
             self.leaf(&item, mesh, true)
-        } else if item.is_a("IfcSectionedSolidHorizontal") {
+        } else if item.is_a("IfcSectionedSolidHorizontal") || item.is_a("IfcSectionedSurface") {
             let directrix = required_ref(&item, "Directrix", "IfcCurve")?;
             let curve = match self.maps.curves.get(&directrix.id()) {
                 Some(c) => c.clone(),
                 None => Arc::new(BasisCurve::read(directrix, &self.units)?),
             };
             self.maps.curves.insert(directrix.id(), curve.clone());
+            if item.is_a("IfcSectionedSurface") {
+                let mesh = sectioned_surface(item, &self.units, &curve)?;
+                return self.leaf(&item, mesh, false);
+            }
             let mesh = sectioned_solid_horizontal(item, &self.units, &curve)?;
             self.leaf(&item, mesh, true)
         } else if item.is_a("IfcManifoldSolidBrep")
@@ -389,8 +394,28 @@ impl ItemMesher {
                 .get_ref("FirstOperand")
                 .ok_or_else(|| missing(&current, "FirstOperand"))?;
         }
-        let mut parts = self.item(current, depth + 1)?;
-        for b in chain.into_iter().rev() {
+        let innermost = *chain.last().expect("item is a boolean result");
+        let (mut parts, done) = if current.is_a("IfcHalfSpaceSolid") {
+            self.without_first(&chain, Some(current), depth)?
+        } else {
+            match self.item(current, depth + 1) {
+                Ok(parts) if !parts.is_empty() => (parts, chain.len()),
+                first => {
+                    let cause = match first {
+                        Ok(_) => GeomError::Empty {
+                            id: current.id(),
+                            class: current.type_name().to_string(),
+                            reason: "a first operand with no solid",
+                        },
+                        Err(e) => e,
+                    };
+                    // Kept only to be checked: the first operand is left out either way.
+                    self.left_out(&innermost, &current, cause, Vec::new())?;
+                    self.without_first(&chain, None, depth)?
+                }
+            }
+        };
+        for b in chain[..done].iter().copied().rev() {
             let second = b
                 .get_ref("SecondOperand")
                 .ok_or_else(|| missing(&b, "SecondOperand"))?;
@@ -399,6 +424,106 @@ impl ItemMesher {
             self.count(&b, n)?;
         }
         Ok(parts)
+    }
+
+    /// IfcOpenShell 0.9's result when the first operand of the innermost boolean of `chain`
+    /// (outermost first) could not be made or holds no solid, or is the half-space `lead`:
+    /// that operand is left out and the operands that follow it in IfcOpenShell's list take
+    /// its place. A run of differences ending at the innermost result is one list (the
+    /// first operand, then the second operands from the outside in: see
+    /// [`flattened_from`]); its first operand that can be made is cut by the others. A union
+    /// or intersection leaves its second operand alone. When the list begins with a
+    /// half-space, what the solids after it have in the half-space's material is kept (a
+    /// second half-space leaves nothing). When nothing of the list can be made, the result
+    /// fails as a whole, as the first operand of the next result out. Returns the parts and
+    /// how many results of `chain` (from the outside) remain to be applied.
+    fn without_first(
+        &mut self,
+        chain: &[Entity<'_>],
+        lead: Option<Entity<'_>>,
+        depth: usize,
+    ) -> Result<(Vec<Part>, usize), GeomError> {
+        let mut n = chain.len();
+        let mut lead = lead.map(|hs| (chain[n - 1], hs));
+        while n > 0 {
+            let k = flattened_from(&chain[..n]);
+            let mut list: Vec<(Entity<'_>, Entity<'_>)> = lead.take().into_iter().collect();
+            for &b in &chain[k..n] {
+                let second = b
+                    .get_ref("SecondOperand")
+                    .ok_or_else(|| missing(&b, "SecondOperand"))?;
+                list.push((b, second));
+            }
+            if let Some(parts) = self.remaining(list, depth)? {
+                return Ok((parts, k));
+            }
+            n = k;
+        }
+        Ok((Vec::new(), 0))
+    }
+
+    /// The parts of one of IfcOpenShell's operand lists without its first operand (see
+    /// [`ItemMesher::without_first`]): each operand with the boolean result it belongs to.
+    /// `None` when no operand can be made.
+    fn remaining(
+        &mut self,
+        list: Vec<(Entity<'_>, Entity<'_>)>,
+        depth: usize,
+    ) -> Result<Option<Vec<Part>>, GeomError> {
+        let mut base: Option<Vec<Part>> = None;
+        let mut lead: Option<HalfSpace> = None;
+        let mut kept = Vec::new();
+        for (b, operand) in list {
+            if let Some(parts) = base.take() {
+                base = Some(self.apply(b, operand, parts, depth)?);
+                continue;
+            }
+            if operand.is_a("IfcHalfSpaceSolid") {
+                match half_space(operand, &self.units) {
+                    // A second half-space after the first leaves nothing, as in IfcOpenShell.
+                    Ok(_) if lead.is_some() => return Ok(Some(Vec::new())),
+                    Ok(hs) => lead = Some(hs),
+                    Err(e) => {
+                        self.left_out(&b, &operand, e, Vec::new())?;
+                    }
+                }
+                continue;
+            }
+            match self.operand(operand, depth + 1) {
+                Ok(parts) if !parts.is_empty() => match lead {
+                    Some(_) => kept.extend(parts),
+                    None => base = Some(parts),
+                },
+                Ok(_) => {
+                    let why = GeomError::Empty {
+                        id: operand.id(),
+                        class: operand.type_name().to_string(),
+                        reason: "a first operand with no solid",
+                    };
+                    self.left_out(&b, &operand, why, Vec::new())?;
+                }
+                Err(e) => {
+                    self.left_out(&b, &operand, e, Vec::new())?;
+                }
+            }
+        }
+        let Some(mut hs) = lead else {
+            return Ok(base);
+        };
+        if hs.prism.is_some() {
+            return Ok(Some(Vec::new()));
+        }
+        // Kept: the material side of the half-space.
+        hs.outward = -hs.outward;
+        let mut out = Vec::with_capacity(kept.len());
+        for p in kept {
+            let mesh = clip(&p.mesh, &hs).unwrap_or(p.mesh);
+            out.push(Part {
+                mesh,
+                closed: p.closed,
+            });
+        }
+        Ok(Some(out))
     }
 
     /// The boolean result `b` of `parts` (its first operand) and `second`. What cannot be
@@ -492,6 +617,33 @@ impl ItemMesher {
         self.warnings.push(left_uncut(b, second, e));
         Ok(parts)
     }
+}
+
+/// Where IfcOpenShell 0.9 begins the operand list of the innermost result of `chain`
+/// (outermost first): the outermost result from which every result in is a difference, with
+/// at most 8 half-spaces among the second operands below it (more are not read as one
+/// list); a union or intersection innermost is a list of its own.
+fn flattened_from(chain: &[Entity<'_>]) -> usize {
+    let n = chain.len();
+    let difference =
+        |b: &Entity<'_>| b.get("Operator").and_then(|v| v.as_enum()) == Some("DIFFERENCE");
+    let half_space_second = |b: &Entity<'_>| {
+        b.get_ref("SecondOperand")
+            .is_some_and(|s| s.is_a("IfcHalfSpaceSolid"))
+    };
+    let mut k = n - 1;
+    if !difference(&chain[k]) {
+        return k;
+    }
+    let mut half_spaces = 0;
+    while k > 0 && difference(&chain[k - 1]) {
+        half_spaces += usize::from(half_space_second(&chain[k]));
+        if half_spaces > 8 {
+            break;
+        }
+        k -= 1;
+    }
+    k
 }
 
 /// How far cutters are grown on every side before they are subtracted, metres (10 µm).

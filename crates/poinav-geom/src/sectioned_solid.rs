@@ -1,5 +1,7 @@
-//! `IfcSectionedSolidHorizontal`: profiles placed at distances along a directrix (an alignment's
-//! basis curve, [`crate::gradient_curve`]) and lofted between consecutive ones, point by point.
+//! `IfcSectionedSolidHorizontal` and `IfcSectionedSurface`: profiles placed at distances along
+//! a directrix (an alignment's basis curve, [`crate::gradient_curve`]) and lofted between
+//! consecutive ones, point by point: areas into a closed solid, open profiles
+//! (`IfcOpenCrossProfileDef`, `IfcArbitraryOpenProfileDef`) into an open surface.
 //!
 //! Each cross section stands square to the curve: profile x to the left of travel (horizontal),
 //! profile y along the curve's normal (up, tilted by the gradient), as IfcOpenShell places
@@ -15,6 +17,7 @@ use poinav_ifc::Entity;
 use crate::error::{degenerate, missing, required_ref, unsupported, GeomError};
 use crate::gradient_curve::{BasisCurve, Frame3};
 use crate::mesh::Mesh;
+use crate::open_profile::open_profile_points;
 use crate::profile::{areas, ProfileArea};
 use crate::triangulation::triangulate_2d;
 use crate::unit_assignment::Units;
@@ -53,6 +56,29 @@ pub fn sectioned_solid_horizontal(
     units: &Units,
     curve: &BasisCurve,
 ) -> Result<Mesh, GeomError> {
+    let (rings, area) = lofted(item, units, curve, false)?;
+    loft(&rings, &area).ok_or_else(|| degenerate(&item, "cross section cannot be triangulated"))
+}
+
+/// The open surface of an `IfcSectionedSurface` (open profiles) in metres, in the
+/// coordinates of its directrix `curve`: one strip of quads per segment of the profiles.
+pub fn sectioned_surface(
+    item: Entity<'_>,
+    units: &Units,
+    curve: &BasisCurve,
+) -> Result<Mesh, GeomError> {
+    let (rings, _) = lofted(item, units, curve, true)?;
+    Ok(strip(&rings))
+}
+
+/// The sections of `item` placed along `curve` at every loft step, and the first section's
+/// profile (its ring layout); `open` reads the profiles as open polylines.
+fn lofted(
+    item: Entity<'_>,
+    units: &Units,
+    curve: &BasisCurve,
+    open: bool,
+) -> Result<(Vec<Vec<DVec3>>, ProfileArea), GeomError> {
     let profiles = item.get_refs("CrossSections");
     let positions = item.get_refs("CrossSectionPositions");
     if profiles.len() < 2 || profiles.len() != positions.len() {
@@ -79,15 +105,23 @@ pub fn sectioned_solid_horizontal(
             .and_then(|v| v.as_f64())
             .filter(|x| x.is_finite())
             .ok_or_else(|| missing(&p, "DistanceAlong"))?;
-        let mut a = areas(profile, units)?;
-        if a.len() != 1 {
-            return Err(unsupported(&profile, "cross section of several areas"));
-        }
+        let area = if open {
+            ProfileArea {
+                outer: open_profile_points(profile, units)?,
+                holes: Vec::new(),
+            }
+        } else {
+            let mut a = areas(profile, units)?;
+            if a.len() != 1 {
+                return Err(unsupported(&profile, "cross section of several areas"));
+            }
+            a.remove(0)
+        };
         sections.push(Section {
             along,
             lateral: offset(&p, "OffsetLateral")? * s,
             vertical: offset(&p, "OffsetVertical")? * s,
-            area: a.remove(0),
+            area,
         });
     }
     sections.sort_by(|a, b| a.along.total_cmp(&b.along));
@@ -118,9 +152,7 @@ pub fn sectioned_solid_horizontal(
         .iter()
         .map(|&d| ring(curve.frame(d), &sections, d))
         .collect();
-    let mesh = loft(&rings, &sections[0].area)
-        .ok_or_else(|| degenerate(&item, "cross section cannot be triangulated"))?;
-    Ok(mesh)
+    Ok((rings, sections.swap_remove(0).area))
 }
 
 /// Appends the distances after `a` up to `b` at which to place sections.
@@ -198,6 +230,23 @@ fn loft(rings: &[Vec<DVec3>], area: &ProfileArea) -> Option<Mesh> {
         }
     }
     Some(mesh)
+}
+
+/// Quads between consecutive rings, each ring an open polyline (no caps).
+fn strip(rings: &[Vec<DVec3>]) -> Mesh {
+    let n = rings.first().map_or(0, Vec::len) as u32;
+    let mut mesh = Mesh {
+        positions: rings.iter().flatten().copied().collect(),
+        triangles: Vec::new(),
+    };
+    for r in 0..(rings.len() as u32).saturating_sub(1) {
+        let (a0, b0) = (r * n, (r + 1) * n);
+        for i in 0..n.saturating_sub(1) {
+            mesh.triangles.push([a0 + i, a0 + i + 1, b0 + i + 1]);
+            mesh.triangles.push([a0 + i, b0 + i + 1, b0 + i]);
+        }
+    }
+    mesh
 }
 
 #[cfg(test)]

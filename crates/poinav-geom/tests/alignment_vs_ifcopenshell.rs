@@ -3,11 +3,15 @@
 //! `ifcopenshell.api.alignment` (line, clothoids, circular arc; constant gradients, a
 //! parabolic and a circular arc) sit within 1 cm of IfcOpenShell's placements with axes within
 //! 0.1 degree,
-//! and their meshes' and a sectioned solid's bounding boxes are within 1 cm; on the corpus's
+//! and their meshes' and a sectioned solid's bounding boxes are within 1 cm, and so are those
+//! of open surfaces (IFC4X3 `IfcSectionedSurface` of `IfcOpenCrossProfileDef` and
+//! `IfcArbitraryOpenProfileDef` sections, an extruded open cross profile), their areas within
+//! 1 %, and of sectioned solids along `IfcOffsetCurveByDistances` (constant and growing
+//! offsets); on the corpus's
 //! railway track, every product of a fixed sample IfcOpenShell meshes (track elements spread
 //! over the track, courses and a rail) is meshed here too, boxes within 1 cm, and every track
 //! element's linear placement resolves. The authored model has no storey and no building: it
-//! gets a plan per railway part (and one for its site, holding the uncontained course), each
+//! gets a plan per railway part (and one for its site, holding the uncontained courses), each
 //! over its whole height.
 
 mod common;
@@ -96,15 +100,29 @@ fn alignments_match_ifcopenshell() {
     let shapes = theirs["authored"].as_object().unwrap();
     assert_eq!(
         shapes.len(),
-        8,
-        "IfcOpenShell meshed 7 proxies and the course"
+        14,
+        "IfcOpenShell meshed 7 proxies, the course, 4 surfaces and 2 courses on offset curves"
     );
+    let mut surfaces = 0;
     let (mut worst_position, mut worst_angle, mut worst_box) = (0.0f64, 0.0f64, 0.0f64);
     for (guid, shape) in shapes {
         let p = by_guid[guid];
         let mesh = mesh_product(&mut cache, p)
             .unwrap_or_else(|e| panic!("{guid} {}: {e}", shape["class"]));
         worst_box = worst_box.max(box_error(mesh.mesh.bounds().unwrap(), shape));
+        // Open surfaces (sectioned surfaces of open cross profiles and open profiles, an
+        // extruded open cross profile): their areas within 1 %.
+        let name = shape["name"].as_str().unwrap_or_default();
+        if name.starts_with("surface ") {
+            let theirs = shape["area"].as_f64().unwrap();
+            let ours = mesh.mesh.area();
+            eprintln!("{name}: area {ours:.3} m2, IfcOpenShell {theirs:.3} m2");
+            assert!(
+                (ours / theirs - 1.0).abs() < 0.01,
+                "{name}: area {ours} m2, IfcOpenShell {theirs} m2"
+            );
+            surfaces += 1;
+        }
         if shape["class"] == "IfcBuildingElementProxy" {
             let (r, t) = matrix(&shape["matrix"]);
             let ours = cache.product(p).unwrap();
@@ -117,6 +135,7 @@ fn alignments_match_ifcopenshell() {
             }
         }
     }
+    assert_eq!(surfaces, 4);
     eprintln!("authored: placements {worst_position:.2e} m, axes {worst_angle:.2e} deg, boxes {worst_box:.2e} m");
     assert!(
         worst_position < TOLERANCE,
@@ -134,10 +153,28 @@ fn alignments_match_ifcopenshell() {
         .iter()
         .map(|p| (p.storey_name.clone().unwrap_or_default(), p.items.len()))
         .collect();
+    let site_items: Vec<String> = plans[0]
+        .items
+        .iter()
+        .map(|i| i.name.clone().unwrap_or_default())
+        .collect();
+    // The uncontained courses are on the site's plan; the extruded cross profile is a
+    // vertical surface, with no shadow.
+    assert_eq!(
+        site_items,
+        [
+            "embankment",
+            "surface cross slopes",
+            "surface cross horizontal",
+            "surface open profile",
+            "offset course",
+            "offset course widening"
+        ]
+    );
     assert_eq!(
         summary,
         [
-            ("Site".to_string(), 1),
+            ("Site".to_string(), 6),
             ("West".to_string(), 4),
             ("East".to_string(), 3)
         ]

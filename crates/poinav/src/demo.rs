@@ -113,6 +113,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     // 3. 3D export.
     let model = Model::open(&enriched)?;
     let meshes = poinav_geom::mesh_model(&model);
+    crate::warnings::print(&crate::warnings::uncut(&model, &meshes));
     let structure = spatial::spatial_structure(&model, &units::length_unit(&model));
     let c = classify(&model, &RuleSet::defaults(), &RobotProfile::paper());
     let scene = poinav_export::SceneInput {

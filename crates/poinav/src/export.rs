@@ -137,9 +137,6 @@ fn problems(model: &Model, meshes: &poinav_geom::ModelMeshes) -> Vec<Warning> {
         .grouped_by("has no Representation: not in the export")
     });
     // Meshed, but without an opening or boolean operand that could not be made.
-    let uncut = meshes
-        .uncut
-        .iter()
-        .map(|(id, e)| Warning::of(id, class(*id), e.to_string()));
+    let uncut = crate::warnings::uncut(model, meshes);
     failed.chain(absent).chain(uncut).collect()
 }

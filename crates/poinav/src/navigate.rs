@@ -170,7 +170,8 @@ pub struct Nav2Args {
 }
 
 /// The building's storeys as floors, classified for `profile`, and warnings: the stairs,
-/// ramps and lifts left out (with why) and what else limits navigation
+/// ramps and lifts left out (with why), the elements meshed without an opening or boolean
+/// operand ([`crate::warnings::uncut`]) and what else limits navigation
 /// ([`Building::diagnostics`]).
 pub fn building(file: &Path, profile: &RobotProfile) -> anyhow::Result<(Building, Vec<Warning>)> {
     let (building, warnings, _) = load(file, profile)?;
@@ -221,6 +222,7 @@ fn load(
         .collect();
     let building = made.building;
     let meshes = stages.meshes;
+    warnings.extend(crate::warnings::uncut(&model, &meshes));
     warnings.extend(building.diagnostics().into_iter().map(Warning::plain));
     let meshed = meshes.elements.len() + meshes.spaces.len();
     Ok((building, warnings, (meshed, meshes.failures.len())))

@@ -61,6 +61,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     crate::progress::end();
     let failed = meshes.failures.len();
     let meshed = meshes.elements.len() + meshes.spaces.len();
+    let uncut = crate::warnings::uncut(&model, &meshes);
     // The meshes are not needed any more: the plans hold what is drawn.
     drop(meshes);
     let chosen: Vec<usize> = if args.all_storeys {
@@ -70,7 +71,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
             plans.iter().map(poinav_bridge::StoreyKey::of).collect();
         vec![poinav_bridge::pick(&storeys, args.storey.as_deref())?]
     };
-    let warnings: Vec<Warning> = chosen
+    let mut warnings: Vec<Warning> = chosen
         .iter()
         .flat_map(|&k| plans[k].problems.iter())
         .map(|p| {
@@ -86,6 +87,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
             )
         })
         .collect();
+    warnings.extend(uncut);
     crate::warnings::print(&warnings);
     crate::ensure_geometry(&args.file, meshed, failed)?;
     crate::progress::stage("classifying");

@@ -252,6 +252,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     };
     let (building, storey_keys, current, meshes) = made;
     let meshes = meshes.unwrap_or_else(|| mesh_model(&model));
+    crate::warnings::print(&crate::warnings::uncut(&model, &meshes));
     let Shown {
         model,
         elements,

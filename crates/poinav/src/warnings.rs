@@ -216,6 +216,20 @@ pub fn gave_up(list: &[poinav_nav::GaveUp]) -> Vec<Warning> {
         .collect()
 }
 
+/// The elements meshed without an opening or boolean operand that could not be made
+/// ([`poinav_geom::ModelMeshes::uncut`]), as warnings: every command that meshes a model
+/// prints them.
+pub fn uncut(model: &poinav_ifc::Model, meshes: &poinav_geom::ModelMeshes) -> Vec<Warning> {
+    meshes
+        .uncut
+        .iter()
+        .map(|(id, e)| {
+            let class = model.entity(*id).map(|e| e.type_name().to_string());
+            Warning::of(id, class, e.to_string())
+        })
+        .collect()
+}
+
 /// The full list for `--json` outputs: `[{"id", "class", "message"}]`.
 pub fn to_json(warnings: &[Warning]) -> serde_json::Value {
     serde_json::to_value(warnings).unwrap_or_default()

@@ -314,13 +314,49 @@ fn a_wall_whose_opening_cannot_be_made_is_kept_uncut_and_the_opening_named() {
     let file = dir.join("opening-zero-depth.ifc");
     let (names, warnings) = glb(&file, &dir.join("flat-opening.glb"));
     assert_eq!(names, set(&ALL));
+    let line = "warning: #100: IfcWall is meshed without #700 (IfcOpeningElement): \
+                #706: degenerate geometry: Depth is not a positive number";
+    assert_eq!(warnings, [line]);
+    // Every command that meshes prints the same summary line: `plan` and the navigation
+    // commands too (here `export nav2`), whose `--json` carries the full list.
+    let svg = dir.join("flat-opening.svg");
+    let (code, _, stderr) = run(&[
+        OsStr::new("plan"),
+        file.as_os_str(),
+        "-o".as_ref(),
+        svg.as_os_str(),
+    ]);
+    assert_eq!(code, 0, "{stderr}");
+    // The opening element's own body is a plan problem (left out), as before.
+    let opening = "warning: #700: #706: degenerate geometry: Depth is not a positive number \
+                   (left out)";
     assert_eq!(
-        warnings,
-        [
-            "warning: #100: IfcWall is meshed without #700 (IfcOpeningElement): \
-          #706: degenerate geometry: Depth is not a positive number"
-        ]
+        stderr
+            .lines()
+            .filter(|l| l.starts_with("warning: "))
+            .collect::<Vec<_>>(),
+        [opening, line]
     );
+    let nav2 = dir.join("flat-opening-nav2");
+    let (code, stdout, stderr) = run(&[
+        OsStr::new("export"),
+        "nav2".as_ref(),
+        file.as_os_str(),
+        "-o".as_ref(),
+        nav2.as_os_str(),
+        "--json".as_ref(),
+    ]);
+    assert_eq!(code, 0, "{stderr}");
+    assert!(stderr.lines().any(|l| l == line), "{stderr}");
+    let json: Value = serde_json::from_str(&stdout).unwrap();
+    let listed: Vec<&str> = json["warnings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter_map(|w| w["message"].as_str())
+        .filter(|m| m.contains("meshed without"))
+        .collect();
+    assert_eq!(listed, [line.strip_prefix("warning: ").unwrap()]);
 }
 
 #[test]
