@@ -1,4 +1,4 @@
-//! IFC authoring for design iteration: writes the paper's test building ([`demo_building`]) and
+//! IFC authoring for design iteration: writes the paper's test building ([`demo_building()`]) and
 //! applies design changes to existing models losslessly ([`door_width`]).
 
 pub mod demo_building;

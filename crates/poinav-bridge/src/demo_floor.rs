@@ -1,4 +1,4 @@
-//! The paper's test building as a [`Floor`], built from its [`Layout`] (walls as rectangles with
+//! The paper's test building as a [`Floor`], built from its `Layout` (walls as rectangles with
 //! door gaps, doors as their openings, rooms and the corridor as zones) with GlobalIds, door
 //! widths and POI roles read from the generated (and possibly patched and enriched) IFC, so ray
 //! hits name real GlobalIds. The one exception to [`crate::building`]: scenarios on the test

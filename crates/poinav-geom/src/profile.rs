@@ -1,7 +1,7 @@
 //! `IfcProfileDef`: the area of a profile as polygons with holes in metres, in the profile's
 //! own coordinates (its `Position` applied), and its outer boundary for footprints.
 //!
-//! Supported: every parameterized profile of [`crate::parameterized_profile`] (rectangles,
+//! Supported: every parameterized profile of `parameterized_profile.rs` (rectangles,
 //! rounded and hollow rectangles, circles and hollow circles, ellipses, trapezia, I, L, T, U,
 //! C and Z shapes), `IfcArbitraryClosedProfileDef` and `...WithVoids` bounded by any curve
 //! [`crate::curve`] reads, `IfcCenterLineProfileDef` ([`crate::open_profile`]),

@@ -193,7 +193,7 @@ pub fn audit(
     audit_with_progress(building, profiles, options, &crate::progress::none)
 }
 
-/// [`audit`], telling `progress` about each storey rasterised and the graph, per profile.
+/// [`audit()`], telling `progress` about each storey rasterised and the graph, per profile.
 pub fn audit_with_progress(
     building: &Building,
     profiles: &[RobotProfile],

@@ -13,7 +13,7 @@
 //! - [`navigator`]: a building prepared for one profile ([`Navigator`]); [`route`] plans on it.
 //! - [`space_name`]: which space a GlobalId, Name, LongName or `Name@Storey` selects
 //!   ([`SpaceNames::find_space`]); an ambiguous name is an error listing the candidates.
-//! - [`audit`]: reachability and door statuses per profile, JSON, SVG ([`svg`]) and HTML.
+//! - [`audit`](mod@audit): reachability and door statuses per profile, JSON, SVG ([`svg`]) and HTML.
 //! - [`nav2`]: map, masks, filter parameters and route graphs for Nav2 ([`route_graph`]:
 //!   nav2_route GeoJSON per storey and for the building, with operations).
 //!

@@ -211,7 +211,7 @@ impl<'m> FactContext<'m> {
     }
 
     /// Doors on the boundary of `space`: from IfcRelSpaceBoundary, else every door whose centre
-    /// is within [`DOOR_REACH_M`] of the space's footprint.
+    /// is within `DOOR_REACH_M` (0.4 m) of the space's footprint.
     pub fn doors_of_space(&self, space: EntityId) -> &[EntityId] {
         self.space_doors.get(&space).map_or(&[], Vec::as_slice)
     }

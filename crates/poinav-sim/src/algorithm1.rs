@@ -434,7 +434,7 @@ fn door_wait(me: usize, env: &Env<'_>, held: Option<DoorIdx>) -> Option<(DoorIdx
     })
 }
 
-/// [`door_wait`] testing every robot (the reference for tests).
+/// `door_wait` (the private fast path) testing every robot (the reference for tests).
 pub fn door_wait_every_robot(
     me: usize,
     env: &Env<'_>,

@@ -403,7 +403,7 @@ pub fn line(r: &StepRecord, dt: f64, names: &Names, events: &[&Event]) -> String
     s
 }
 
-/// Appends [`line`] to `out` (for many lines, prepare a [`LineWriter`] once instead).
+/// Appends [`line()`] to `out` (for many lines, prepare a [`LineWriter`] once instead).
 pub fn line_into(out: &mut String, r: &StepRecord, dt: f64, names: &Names, events: &[&Event]) {
     let mut bytes = Vec::new();
     LineWriter::new(names).line_into(&mut bytes, r, dt, events);

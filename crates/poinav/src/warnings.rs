@@ -1,7 +1,7 @@
 //! Warnings on standard error, summarised: one line per (class, reason) with a count and the
 //! first `#id`s, so a model with ten thousand unreadable elements prints a screenful, not ten
 //! thousand lines. `--verbose` lists every warning, `--quiet` none; `--json` outputs carry the
-//! full list ([`to_json`]). Every command prints its warnings through [`print`].
+//! full list ([`to_json`]). Every command prints its warnings through [`print()`].
 
 use serde::Serialize;
 
