@@ -4,8 +4,8 @@
 //! its layout, [`crate::demo_floor`]). `poinav simulate` and `poinav serve --scenario` both
 //! run on what this prepared.
 
-use poinav_geom::ModelMeshes;
-use poinav_ifc::Model;
+use poinav_geom::{GeomError, ModelMeshes};
+use poinav_ifc::{EntityId, Model};
 use poinav_nav::{Building, Floor};
 use poinav_poi::{classify, Classification, RuleSet};
 use poinav_sim::scenario::{load_profile, Scenario};
@@ -34,6 +34,9 @@ pub struct Prepared {
     pub current: usize,
     /// What the building left out, and why.
     pub dropped: Vec<Dropped>,
+    /// The elements meshed without an opening or boolean operand that could not be made
+    /// ([`ModelMeshes::uncut`]; none for the test building).
+    pub uncut: Vec<(EntityId, GeomError)>,
     /// What the patches did, in words.
     pub notes: Vec<String>,
 }
@@ -113,7 +116,7 @@ fn prepare_keeping(
         Some(r) => RuleSet::with_user_file(&scenario.resolve(r))?,
     };
     let classification = classify(&model, &rules, &profile);
-    let (building, storeys, dropped, meshes) = match &b.demo {
+    let (building, storeys, dropped, uncut, meshes) = match &b.demo {
         Some(demo) => {
             let floor = demo_floor(&demo_spec(demo), &model, &classification)?;
             let key = StoreyKey {
@@ -122,13 +125,24 @@ fn prepare_keeping(
                 label: floor.name.clone(),
                 has_doors: !floor.doors.is_empty(),
             };
-            (Building::single(floor), vec![key], Vec::new(), None)
+            (
+                Building::single(floor),
+                vec![key],
+                Vec::new(),
+                Vec::new(),
+                None,
+            )
         }
         None => {
-            let stages = Stages::of(&model);
+            let mut stages = Stages::of(&model);
             let made = building(&model, &classification, &stages);
+            let uncut = if keep_meshes {
+                stages.meshes.uncut.clone()
+            } else {
+                std::mem::take(&mut stages.meshes.uncut)
+            };
             let meshes = keep_meshes.then_some(stages.meshes);
-            (made.building, made.storeys, made.dropped, meshes)
+            (made.building, made.storeys, made.dropped, uncut, meshes)
         }
     };
     // The test building has one storey, whatever the scenario names.
@@ -143,6 +157,7 @@ fn prepare_keeping(
         storeys,
         current,
         dropped,
+        uncut,
         notes,
     };
     Ok((prepared, meshes))

@@ -213,17 +213,9 @@ fn load(
     let stages = poinav_bridge::Stages { meshes, plans };
     let made = poinav_bridge::building(&model, &c, &stages);
     crate::progress::end();
-    let mut warnings: Vec<Warning> = made
-        .dropped
-        .iter()
-        .map(|d| {
-            Warning::of(&d.id, Some(d.kind.label().to_string()), d.message()).grouped_by(d.group())
-        })
-        .collect();
     let building = made.building;
     let meshes = stages.meshes;
-    warnings.extend(crate::warnings::uncut(&model, &meshes));
-    warnings.extend(building.diagnostics().into_iter().map(Warning::plain));
+    let warnings = crate::warnings::of_building(&model, &made.dropped, &meshes.uncut, &building);
     let meshed = meshes.elements.len() + meshes.spaces.len();
     Ok((building, warnings, (meshed, meshes.failures.len())))
 }

@@ -149,6 +149,12 @@ fn run_variants(
     for variant in names {
         crate::progress::stage("preparing");
         let building = poinav_bridge::prepare(scenario, variant.as_deref())?;
+        crate::warnings::print(&crate::warnings::of_building(
+            &building.model,
+            &building.dropped,
+            &building.uncut,
+            &building.building,
+        ));
         let dir = match &variant {
             Some(v) => out.join(v),
             None => out.to_path_buf(),

@@ -220,14 +220,40 @@ pub fn gave_up(list: &[poinav_nav::GaveUp]) -> Vec<Warning> {
 /// ([`poinav_geom::ModelMeshes::uncut`]), as warnings: every command that meshes a model
 /// prints them.
 pub fn uncut(model: &poinav_ifc::Model, meshes: &poinav_geom::ModelMeshes) -> Vec<Warning> {
-    meshes
-        .uncut
+    uncut_of(model, &meshes.uncut)
+}
+
+/// [`uncut`] from the list alone (a prepared scenario keeps it, not the meshes).
+pub fn uncut_of(
+    model: &poinav_ifc::Model,
+    uncut: &[(poinav_ifc::EntityId, poinav_geom::GeomError)],
+) -> Vec<Warning> {
+    uncut
         .iter()
         .map(|(id, e)| {
             let class = model.entity(*id).map(|e| e.type_name().to_string());
             Warning::of(id, class, e.to_string())
         })
         .collect()
+}
+
+/// What making a building left out (grouped like the plan's), then the elements meshed uncut
+/// and the building's own diagnostics: route, audit, export nav2 and simulate print the same.
+pub fn of_building(
+    model: &poinav_ifc::Model,
+    dropped: &[poinav_bridge::Dropped],
+    uncut: &[(poinav_ifc::EntityId, poinav_geom::GeomError)],
+    building: &poinav_nav::Building,
+) -> Vec<Warning> {
+    let mut warnings: Vec<Warning> = dropped
+        .iter()
+        .map(|d| {
+            Warning::of(&d.id, Some(d.kind.label().to_string()), d.message()).grouped_by(d.group())
+        })
+        .collect();
+    warnings.extend(uncut_of(model, uncut));
+    warnings.extend(building.diagnostics().into_iter().map(Warning::plain));
+    warnings
 }
 
 /// The full list for `--json` outputs: `[{"id", "class", "message"}]`.

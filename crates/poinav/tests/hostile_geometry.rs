@@ -357,6 +357,28 @@ fn a_wall_whose_opening_cannot_be_made_is_kept_uncut_and_the_opening_named() {
         .filter(|m| m.contains("meshed without"))
         .collect();
     assert_eq!(listed, [line.strip_prefix("warning: ").unwrap()]);
+    // `simulate` on the same file meshes it to prepare its floor, and says so too.
+    let scenario = dir.join("flat-opening.toml");
+    std::fs::write(
+        &scenario,
+        format!(
+            "name = \"flat-opening\"\nduration_s = 0.5\n\n[building]\nifc = {:?}\n\n\
+             [[robot]]\nname = \"Robot1\"\nstart = {{ x = 2.0, y = -2.0, heading_deg = 0.0 }}\n\
+             controller = {{ kind = \"keys\", scheme = \"arrows\", script = [] }}\n",
+            file.display().to_string()
+        ),
+    )
+    .unwrap();
+    let out = dir.join("flat-opening-sim");
+    let (code, _, stderr) = run(&[
+        OsStr::new("simulate"),
+        scenario.as_os_str(),
+        "-o".as_ref(),
+        out.as_os_str(),
+        "--no-trace".as_ref(),
+    ]);
+    assert_eq!(code, 0, "{stderr}");
+    assert!(stderr.lines().any(|l| l == line), "{stderr}");
 }
 
 #[test]
