@@ -80,6 +80,28 @@ pub struct Navigator<'a> {
     pub gave_up: Vec<crate::bounds::GaveUp>,
 }
 
+/// What a [`Navigator`] owns: all of it but the building it borrows
+/// ([`Navigator::into_parts`], [`Navigator::from_parts`]).
+#[derive(Debug)]
+pub struct NavParts {
+    profile: RobotProfile,
+    options: NavOptions,
+    topology: Topology,
+    floors: Vec<FloorNav>,
+    nothing_to_navigate: Vec<Option<String>>,
+    status: Vec<(AccessibilityStatus, String)>,
+    grid_passable: Vec<bool>,
+    open: Vec<bool>,
+    gave_up: Vec<crate::bounds::GaveUp>,
+}
+
+impl NavParts {
+    /// The options the navigator was made with.
+    pub fn options(&self) -> &NavOptions {
+        &self.options
+    }
+}
+
 impl<'a> Navigator<'a> {
     /// Rasterises and inflates every storey and works out statuses for `profile`.
     pub fn new(
@@ -192,6 +214,63 @@ impl<'a> Navigator<'a> {
             open,
             gave_up,
         })
+    }
+
+    /// Everything but the building borrow, for a caller that keeps a navigator between calls
+    /// on one building (the Python package's cache) and lends it back with
+    /// [`Navigator::from_parts`]. Moves, no copies.
+    pub fn into_parts(self) -> NavParts {
+        let Navigator {
+            building: _,
+            profile,
+            options,
+            topology,
+            floors,
+            nothing_to_navigate,
+            status,
+            grid_passable,
+            open,
+            gave_up,
+        } = self;
+        NavParts {
+            profile,
+            options,
+            topology,
+            floors,
+            nothing_to_navigate,
+            status,
+            grid_passable,
+            open,
+            gave_up,
+        }
+    }
+
+    /// The navigator [`Navigator::into_parts`] took apart, on `building` again (the same
+    /// building it was made for: the parts index its storeys, doors and zones).
+    pub fn from_parts(building: &'a Building, parts: NavParts) -> Navigator<'a> {
+        let NavParts {
+            profile,
+            options,
+            topology,
+            floors,
+            nothing_to_navigate,
+            status,
+            grid_passable,
+            open,
+            gave_up,
+        } = parts;
+        Navigator {
+            building,
+            profile,
+            options,
+            topology,
+            floors,
+            nothing_to_navigate,
+            status,
+            grid_passable,
+            open,
+            gave_up,
+        }
     }
 
     /// The storeys with nothing to navigate, with why, in order.

@@ -3,79 +3,22 @@
 //! route's time.
 //!
 //! A `poinav_nav::Navigator` borrows the building it was made for; what it owns besides that
-//! borrow is kept here and lent back to a navigator for each call (moving vectors, no copy).
+//! borrow (`NavParts`) is kept here and lent back to a navigator for each call (moves, no copy).
 
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Mutex, PoisonError};
 
-use poinav_nav::navigator::FloorNav;
-use poinav_nav::{GaveUp, NavError, NavOptions, Navigator, Topology};
-use poinav_poi::{AccessibilityStatus, RobotProfile};
+use poinav_nav::navigator::NavParts;
+use poinav_nav::{NavError, NavOptions, Navigator};
+use poinav_poi::RobotProfile;
 
 /// How many option sets a building keeps navigators for (the least recently used goes).
 const KEPT: usize = 4;
 
-/// What a navigator owns: all of it but the building.
-#[derive(Debug)]
-struct Owned {
-    profile: RobotProfile,
-    options: NavOptions,
-    topology: Topology,
-    floors: Vec<FloorNav>,
-    nothing_to_navigate: Vec<Option<String>>,
-    status: Vec<(AccessibilityStatus, String)>,
-    grid_passable: Vec<bool>,
-    open: Vec<bool>,
-    gave_up: Vec<GaveUp>,
-}
-
-impl Owned {
-    fn take(nav: Navigator<'_>) -> Owned {
-        let Navigator {
-            building: _,
-            profile,
-            options,
-            topology,
-            floors,
-            nothing_to_navigate,
-            status,
-            grid_passable,
-            open,
-            gave_up,
-        } = nav;
-        Owned {
-            profile,
-            options,
-            topology,
-            floors,
-            nothing_to_navigate,
-            status,
-            grid_passable,
-            open,
-            gave_up,
-        }
-    }
-
-    fn lend(self, building: &poinav_nav::Building) -> Navigator<'_> {
-        Navigator {
-            building,
-            profile: self.profile,
-            options: self.options,
-            topology: self.topology,
-            floors: self.floors,
-            nothing_to_navigate: self.nothing_to_navigate,
-            status: self.status,
-            grid_passable: self.grid_passable,
-            open: self.open,
-            gave_up: self.gave_up,
-        }
-    }
-}
-
 /// Navigators of one building and profile, by options, most recently used last.
 #[derive(Debug, Default)]
 pub struct Navigators {
-    kept: Mutex<Vec<Owned>>,
+    kept: Mutex<Vec<NavParts>>,
     built: AtomicUsize,
 }
 
@@ -91,20 +34,20 @@ impl Navigators {
     ) -> Result<R, NavError> {
         // A panic inside `f` loses only the navigator lent out: the list stays sound.
         let mut kept = self.kept.lock().unwrap_or_else(PoisonError::into_inner);
-        let owned = match kept.iter().position(|o| o.options == *options) {
+        let parts = match kept.iter().position(|o| o.options() == options) {
             Some(i) => kept.remove(i),
             None => {
                 let nav = Navigator::new(building, profile, options)?;
                 self.built.fetch_add(1, Ordering::Relaxed);
-                Owned::take(nav)
+                nav.into_parts()
             }
         };
-        let nav = owned.lend(building);
+        let nav = Navigator::from_parts(building, parts);
         let out = f(&nav);
         if kept.len() == KEPT {
             kept.remove(0);
         }
-        kept.push(Owned::take(nav));
+        kept.push(nav.into_parts());
         Ok(out)
     }
 
@@ -116,10 +59,10 @@ impl Navigators {
         f: impl FnOnce(&Navigator<'_>) -> R,
     ) -> Option<R> {
         let mut kept = self.kept.lock().unwrap_or_else(PoisonError::into_inner);
-        let i = kept.iter().position(|o| o.options == *options)?;
-        let nav = kept.remove(i).lend(building);
+        let i = kept.iter().position(|o| o.options() == options)?;
+        let nav = Navigator::from_parts(building, kept.remove(i));
         let out = f(&nav);
-        kept.push(Owned::take(nav));
+        kept.push(nav.into_parts());
         Some(out)
     }
 
