@@ -102,17 +102,6 @@ pub fn run_scenario(
     run_scenario_with(scenario, only, out, Some(1))
 }
 
-/// [`run_scenario_with`] writing the trace in `format`.
-pub fn run_scenario_as(
-    scenario: &Scenario,
-    only: Option<&str>,
-    out: &Path,
-    trace_every: Option<u64>,
-    format: poinav_sim::TraceFormat,
-) -> anyhow::Result<Vec<VariantRun>> {
-    run_variants(scenario, only, out, trace_every, format)
-}
-
 /// [`run_scenario`] with the trace thinned to every `trace_every`-th step, or none.
 pub fn run_scenario_with(
     scenario: &Scenario,
@@ -120,7 +109,7 @@ pub fn run_scenario_with(
     out: &Path,
     trace_every: Option<u64>,
 ) -> anyhow::Result<Vec<VariantRun>> {
-    run_variants(
+    run_scenario_as(
         scenario,
         only,
         out,
@@ -129,7 +118,8 @@ pub fn run_scenario_with(
     )
 }
 
-fn run_variants(
+/// [`run_scenario_with`] writing the trace in `format`.
+pub fn run_scenario_as(
     scenario: &Scenario,
     only: Option<&str>,
     out: &Path,
