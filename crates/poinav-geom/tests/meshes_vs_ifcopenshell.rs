@@ -66,14 +66,9 @@ fn meshes_match_ifcopenshell() {
                 continue;
             };
             let (lo, hi) = e.mesh.bounds().unwrap();
-            let corner = |k: &str| -> [f64; 3] {
-                let v = r[k].as_array().unwrap();
-                [0, 1, 2].map(|i| v[i].as_f64().unwrap())
-            };
-            let (rlo, rhi) = (corner("min"), corner("max"));
-            let err = (0..3)
-                .map(|i| (lo[i] - rlo[i]).abs().max((hi[i] - rhi[i]).abs()))
-                .fold(0.0, f64::max);
+            let reference = common::ReferenceBox::of(r, name);
+            let err = reference.error((lo, hi));
+            let (rlo, rhi) = (reference.lo, reference.hi);
             a.worst_box = a.worst_box.max(err);
             if err <= BOX_TOLERANCE {
                 a.box_ok += 1;

@@ -46,17 +46,10 @@ fn broken_and_odd_parts_are_meshed_as_ifcopenshell_meshes_them() {
             problems.push(format!("{name}: not meshed"));
             continue;
         };
-        let corner = |k: &str| -> [f64; 3] {
-            let v = theirs[k]
-                .as_array()
-                .unwrap_or_else(|| panic!("{name}: IfcOpenShell gives no shape: {theirs}"));
-            [0, 1, 2].map(|i| v[i].as_f64().unwrap())
-        };
         let (lo, hi) = e.mesh.bounds().unwrap();
-        let (rlo, rhi) = (corner("min"), corner("max"));
-        let box_err = (0..3)
-            .map(|i| (lo[i] - rlo[i]).abs().max((hi[i] - rhi[i]).abs()))
-            .fold(0.0, f64::max);
+        let reference = common::ReferenceBox::of(theirs, name);
+        let box_err = reference.error((lo, hi));
+        let (rlo, rhi) = (reference.lo, reference.hi);
         let their_volume = theirs["volume"].as_f64().unwrap();
         let volume = e.mesh.volume();
         eprintln!(

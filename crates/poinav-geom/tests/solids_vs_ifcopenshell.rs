@@ -16,7 +16,6 @@ use std::collections::BTreeMap;
 
 use poinav_geom::{mesh_model, Mesh};
 use poinav_ifc::Model;
-use serde_json::Value;
 
 /// Bounding boxes agree when every coordinate of both corners is this close (metres).
 const BOX_TOLERANCE: f64 = 0.01;
@@ -26,11 +25,6 @@ const VOLUME_TOLERANCE: f64 = 0.01;
 
 /// The cases the script writes.
 const CASES: usize = 25;
-
-fn corner(v: &Value) -> [f64; 3] {
-    let a = v.as_array().expect("a corner is a list");
-    [0, 1, 2].map(|i| a[i].as_f64().expect("a coordinate"))
-}
 
 /// Undirected edges not used exactly once each way, vertices welded by exact position.
 fn open_edges(m: &Mesh) -> usize {
@@ -86,10 +80,9 @@ fn solids_match_ifcopenshell() {
             expected
         };
         let (lo, hi) = e.mesh.bounds().unwrap();
-        let (rlo, rhi) = (corner(&reference["min"]), corner(&reference["max"]));
-        let err = (0..3)
-            .map(|i| (lo[i] - rlo[i]).abs().max((hi[i] - rhi[i]).abs()))
-            .fold(0.0, f64::max);
+        let reference_box = common::ReferenceBox::of(reference, name);
+        let err = reference_box.error((lo, hi));
+        let (rlo, rhi) = (reference_box.lo, reference_box.hi);
         let volume = e.mesh.volume();
         let open = open_edges(&e.mesh);
         eprintln!(
