@@ -349,18 +349,36 @@ pub fn is_curve(e: &Entity<'_>) -> bool {
 /// Bezier pieces end to end: knots 0 to k, the ends p + 1 times, the others p times (one
 /// piece: what IfcOpenShell's Bezier mapping uses).
 pub fn curve(e: Entity<'_>, s: f64) -> Result<Curve, GeomError> {
-    if e.is_a("IfcBezierCurve") {
-        let p = degree(&e, "Degree")?;
-        let list = e
-            .get("ControlPointsList")
-            .ok_or_else(|| missing(&e, "ControlPointsList"))?;
-        let pts = points(&e, &list, s)?;
-        if p == 0 || pts.len() < p + 1 || (pts.len() - 1) % p != 0 {
-            return Err(degenerate(
-                &e,
-                "Bezier control points do not make whole pieces",
-            ));
-        }
+    let bezier = e.is_a("IfcBezierCurve");
+    if !bezier && !e.is_a("IfcBSplineCurveWithKnots") {
+        return Err(crate::error::unsupported(
+            &e,
+            "B-spline curve without knots",
+        ));
+    }
+    let p = degree(&e, "Degree")?;
+    let list = e
+        .get("ControlPointsList")
+        .ok_or_else(|| missing(&e, "ControlPointsList"))?;
+    let pts = points(&e, &list, s)?;
+    if bezier && (p == 0 || pts.len() < p + 1 || (pts.len() - 1) % p != 0) {
+        return Err(degenerate(
+            &e,
+            "Bezier control points do not make whole pieces",
+        ));
+    }
+    let weights = if e.is_a("IfcRationalBezierCurve") || e.is_a("IfcRationalBSplineCurveWithKnots")
+    {
+        Some(
+            e.get("WeightsData")
+                .as_ref()
+                .and_then(numbers)
+                .ok_or_else(|| missing(&e, "WeightsData"))?,
+        )
+    } else {
+        None
+    };
+    if bezier {
         let pieces = (pts.len() - 1) / p;
         let knots: Vec<f64> = (0..=pieces).map(|k| k as f64).collect();
         let mult: Vec<i64> = (0..=pieces)
@@ -372,42 +390,11 @@ pub fn curve(e: Entity<'_>, s: f64) -> Result<Curve, GeomError> {
                 }
             })
             .collect();
-        let weights = if e.is_a("IfcRationalBezierCurve") {
-            Some(
-                e.get("WeightsData")
-                    .as_ref()
-                    .and_then(numbers)
-                    .ok_or_else(|| missing(&e, "WeightsData"))?,
-            )
-        } else {
-            None
-        };
         let k = knot_vector(&knots, &mult)
             .ok_or_else(|| degenerate(&e, "degree too high for a Bezier curve"))?;
         return Curve::new(p, k, &pts, weights.as_deref())
             .ok_or_else(|| degenerate(&e, "degree, control points or weights do not fit"));
     }
-    if !e.is_a("IfcBSplineCurveWithKnots") {
-        return Err(crate::error::unsupported(
-            &e,
-            "B-spline curve without knots",
-        ));
-    }
-    let p = degree(&e, "Degree")?;
-    let list = e
-        .get("ControlPointsList")
-        .ok_or_else(|| missing(&e, "ControlPointsList"))?;
-    let pts = points(&e, &list, s)?;
-    let weights = if e.is_a("IfcRationalBSplineCurveWithKnots") {
-        Some(
-            e.get("WeightsData")
-                .as_ref()
-                .and_then(numbers)
-                .ok_or_else(|| missing(&e, "WeightsData"))?,
-        )
-    } else {
-        None
-    };
     let k = knots(&e, "Knots", "KnotMultiplicities")?;
     Curve::new(p, k, &pts, weights.as_deref())
         .ok_or_else(|| degenerate(&e, "degree, knots, control points or weights do not fit"))
