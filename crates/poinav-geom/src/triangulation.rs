@@ -117,16 +117,26 @@ pub fn triangulate_3d(outer: &[DVec3], holes: &[Vec<DVec3>]) -> Option<Vec<[u32;
     if outer.len() == 3 && holes.is_empty() {
         return Some(vec![[0, 1, 2]]);
     }
-    // A right-handed frame (u, v, normal): counter-clockwise in (u, v) faces the normal.
+    let (_, outer2, holes2) = in_plane(normal, outer, holes);
+    triangulate_2d(&outer2, &holes2)
+}
+
+/// A right-handed frame `(u, v)` of the plane with unit `normal` (counter-clockwise in
+/// (u, v) faces the normal), and `outer` and `holes` in it.
+fn in_plane(
+    normal: DVec3,
+    outer: &[DVec3],
+    holes: &[Vec<DVec3>],
+) -> ((DVec3, DVec3), Vec<DVec2>, Vec<Vec<DVec2>>) {
     let u = normal.any_orthonormal_vector();
     let v = normal.cross(u);
     let project = |p: &DVec3| DVec2::new(p.dot(u), p.dot(v));
-    let outer2: Vec<DVec2> = outer.iter().map(project).collect();
-    let holes2: Vec<Vec<DVec2>> = holes
+    let outer2 = outer.iter().map(project).collect();
+    let holes2 = holes
         .iter()
         .map(|h| h.iter().map(project).collect())
         .collect();
-    triangulate_2d(&outer2, &holes2)
+    ((u, v), outer2, holes2)
 }
 
 /// Like [`triangulate_2d`], but a polygon of more than [`CROSSING_CHECK_ABOVE`] points whose
@@ -228,14 +238,7 @@ pub fn triangulate_3d_resolving(
     if outer.len() == 3 && holes.is_empty() {
         return Some((Vec::new(), vec![[0, 1, 2]]));
     }
-    let u = normal.any_orthonormal_vector();
-    let v = normal.cross(u);
-    let project = |p: &DVec3| DVec2::new(p.dot(u), p.dot(v));
-    let outer2: Vec<DVec2> = outer.iter().map(project).collect();
-    let holes2: Vec<Vec<DVec2>> = holes
-        .iter()
-        .map(|h| h.iter().map(project).collect())
-        .collect();
+    let ((u, v), outer2, holes2) = in_plane(normal, outer, holes);
     let (added, tris) = triangulate_2d_resolving(&outer2, &holes2)?;
     let height = outer.iter().map(|p| p.dot(normal)).sum::<f64>() / outer.len() as f64;
     let added = added
