@@ -172,10 +172,17 @@ pub fn interior_point(ring: &[DVec2]) -> Option<DVec2> {
 /// X coordinates where the horizontal line at `y` crosses the ring's edges (half-open rule, so a
 /// vertex is counted once).
 pub fn crossings(ring: &[DVec2], y: f64) -> Vec<f64> {
-    let n = ring.len();
     let mut xs = Vec::new();
+    crossings_into(ring, y, &mut xs);
+    xs
+}
+
+/// [`crossings`] into `xs` (cleared first), for a caller that scans many lines with one buffer.
+pub fn crossings_into(ring: &[DVec2], y: f64, xs: &mut Vec<f64>) {
+    xs.clear();
+    let n = ring.len();
     if n < 3 {
-        return xs;
+        return;
     }
     let mut j = n - 1;
     for i in 0..n {
@@ -185,7 +192,6 @@ pub fn crossings(ring: &[DVec2], y: f64) -> Vec<f64> {
         }
         j = i;
     }
-    xs
 }
 
 /// The frame of a passage ring: `axis` along its width (the direction of its longest edge),

@@ -216,16 +216,7 @@ fn paint(
     let mut xs: Vec<f64> = Vec::new();
     for row in r0..=r1.min(height.saturating_sub(1)) {
         let y = origin.y + (row as f64 + 0.5) * res;
-        xs.clear();
-        let n = ring.len();
-        let mut j = n - 1;
-        for i in 0..n {
-            let (a, b) = (ring[j], ring[i]);
-            if (a.y <= y) != (b.y <= y) {
-                xs.push(a.x + (y - a.y) / (b.y - a.y) * (b.x - a.x));
-            }
-            j = i;
-        }
+        polygon::crossings_into(ring, y, &mut xs);
         xs.sort_by(f64::total_cmp);
         for span in xs.chunks_exact(2) {
             // Columns whose centre x lies in [x0, x1).
