@@ -287,14 +287,6 @@ impl PassageFrame {
 mod tests {
     #[test]
     fn ring_distance_is_zero_for_crossing_rings_and_the_gap_otherwise() {
-        let rect = |x0: f64, y0: f64, x1: f64, y1: f64| {
-            vec![
-                DVec2::new(x0, y0),
-                DVec2::new(x1, y0),
-                DVec2::new(x1, y1),
-                DVec2::new(x0, y1),
-            ]
-        };
         // A plus: no vertex of either inside the other, edges cross.
         assert_eq!(
             ring_distance(&rect(-2.0, -0.5, 2.0, 0.5), &rect(-0.5, -2.0, 0.5, 2.0)),

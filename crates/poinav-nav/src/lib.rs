@@ -22,9 +22,7 @@
 //! use poinav_nav::{Building, Floor, FloorDoor, FloorObstacle, FloorZone, NavOptions, Navigator, ObstacleKind, Place};
 //! use poinav_roles::{AccessibilityStatus, RobotProfile};
 //!
-//! let rect = |x0: f64, y0: f64, x1: f64, y1: f64| {
-//!     vec![DVec2::new(x0, y0), DVec2::new(x1, y0), DVec2::new(x1, y1), DVec2::new(x0, y1)]
-//! };
+//! use poinav_nav::polygon::rect;
 //! let zone = |name: &str, ring| FloorZone {
 //!     id: name.into(), name: Some(name.into()), long_name: None, ring, roles: vec![], coordination: None,
 //! };

@@ -122,14 +122,7 @@ pub fn open_floor(n: usize) -> (Floor, Vec<poinav_sim::RobotSetup>) {
     use poinav_sim::controller::{ControllerSpec, KeyPress, KeyScheme};
     let side = (n as f64).sqrt().ceil() as usize;
     let size = side as f64 * 3.0 + 4.0;
-    let rect = |x0: f64, y0: f64, x1: f64, y1: f64| {
-        vec![
-            DVec2::new(x0, y0),
-            DVec2::new(x1, y0),
-            DVec2::new(x1, y1),
-            DVec2::new(x0, y1),
-        ]
-    };
+    use poinav_nav::polygon::rect;
     let obstacle = |id: String, ring: Vec<DVec2>| FloorObstacle {
         id,
         class: "IfcWall".into(),
