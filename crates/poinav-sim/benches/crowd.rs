@@ -45,11 +45,14 @@ fn bench_second(
                     format,
                 });
                 let mut rec = Recorder::new(&sim, 61, Vec::new(), trace);
-                for k in 0..=60 {
-                    sim.tick(k < 60);
-                    rec.after_tick(&sim, DT).unwrap();
-                }
-                rec.finish().unwrap();
+                // As `poinav simulate` runs it: the loop on a thread of the pool.
+                poinav_sim::on_pool(|| {
+                    for k in 0..=60 {
+                        sim.tick(k < 60);
+                        rec.after_tick(&sim, DT).unwrap();
+                    }
+                    rec.finish().unwrap();
+                });
                 sim
             },
             BatchSize::PerIteration,

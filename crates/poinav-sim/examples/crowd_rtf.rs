@@ -40,7 +40,7 @@ fn main() {
     };
     let mut sim = Sim::new(&floor, &setups, opts).unwrap();
     let steps = (seconds as f64 / DT).round() as u64;
-    let mut sink: Box<dyn std::io::Write> = match std::env::var_os("CROWD_TRACE") {
+    let mut sink: Box<dyn std::io::Write + Send> = match std::env::var_os("CROWD_TRACE") {
         Some(path) => Box::new(std::io::BufWriter::new(
             std::fs::File::create(path).expect("CROWD_TRACE is a writable path"),
         )),
@@ -54,11 +54,14 @@ fn main() {
     });
     let mut rec = Recorder::new(&sim, steps + 1, Vec::new(), trace);
     let (wall, cpu) = (Instant::now(), cpu_seconds());
-    for k in 0..=steps {
-        sim.tick(k < steps);
-        rec.after_tick(&sim, DT).unwrap();
-    }
-    rec.finish().unwrap();
+    // As `poinav simulate` runs it: the loop on a thread of the pool.
+    poinav_sim::on_pool(|| {
+        for k in 0..=steps {
+            sim.tick(k < steps);
+            rec.after_tick(&sim, DT).unwrap();
+        }
+        rec.finish().unwrap();
+    });
     let (wall, cpu) = (wall.elapsed().as_secs_f64(), cpu_seconds() - cpu);
     println!(
         "{n} robots, {seconds} s, trace every {every} ({format:?}): wall {wall:.3} s = {:.1}x real time; CPU {cpu:.2} s = {:.1}x real time per core; {} threads",

@@ -45,7 +45,7 @@ pub use events::{Event, EventKind};
 pub use key_error::KeyError;
 pub use output::{run_into, run_into_as, write_outputs};
 pub use recorder::{Recorder, RobotFigures, TraceFormat, TraceOut};
-pub use run::{run, run_with, Outcome};
+pub use run::{on_pool, run, run_with, Outcome};
 pub use scenario::Scenario;
 pub use step::{RobotSetup, Sim, SimOptions, DT};
 

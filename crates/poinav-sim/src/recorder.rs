@@ -31,8 +31,9 @@ pub enum TraceFormat {
 /// Where a run writes its trace.
 #[allow(missing_debug_implementations)]
 pub struct TraceOut<'w> {
-    /// The writer (buffer it: lines are written one by one).
-    pub writer: &'w mut dyn Write,
+    /// The writer (buffer it: lines are written one by one). `Send`: the run loop executes on
+    /// a thread of rayon's pool ([`crate::on_pool`]).
+    pub writer: &'w mut (dyn Write + Send),
     /// Keep every `every`-th step (1: all); the lines kept are those of the full trace.
     pub every: u64,
     /// Names the writer in errors (a path).
