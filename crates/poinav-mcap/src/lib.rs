@@ -29,4 +29,4 @@ pub mod schema;
 
 pub use error::McapError;
 pub use map::{storey_map, StoreyMap};
-pub use record::{write_recording, RecordSummary, Scene, START_NS};
+pub use record::{write_recording, write_recording_from, RecordSummary, Scene, START_NS};

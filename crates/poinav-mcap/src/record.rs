@@ -234,14 +234,27 @@ pub fn write_recording(
     scene: &Scene<'_>,
     out: &Path,
 ) -> Result<RecordSummary, McapError> {
+    let open = || -> Result<Box<dyn BufRead>, std::io::Error> {
+        Ok(Box::new(BufReader::new(std::fs::File::open(trace)?)))
+    };
+    write_recording_from(&open, trace, scene, out)
+}
+
+/// [`write_recording`] of the JSON Lines trace `open` opens (called twice, each time from its
+/// start), `trace` naming it in errors: another format read as JSON Lines (the simulator's
+/// compact trace through `poinav_sim::trace_bin::TraceLines::into_jsonl`).
+pub fn write_recording_from(
+    open: &dyn Fn() -> Result<Box<dyn BufRead>, std::io::Error>,
+    trace: &Path,
+    scene: &Scene<'_>,
+    out: &Path,
+) -> Result<RecordSummary, McapError> {
     let trace_name = trace.display().to_string();
     let open = || {
-        std::fs::File::open(trace)
-            .map(BufReader::new)
-            .map_err(|e| McapError::Io {
-                path: trace.to_path_buf(),
-                source: e,
-            })
+        open().map_err(|e| McapError::Io {
+            path: trace.to_path_buf(),
+            source: e,
+        })
     };
     let start = initial_statuses(&mut open()?, &trace_name)?;
     let mut reader = open()?;

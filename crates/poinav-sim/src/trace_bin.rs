@@ -353,6 +353,60 @@ impl<R: BufRead> Iterator for TraceLines<R> {
     }
 }
 
+/// The lines of a trace in either format as a JSON Lines byte stream, each line with its
+/// newline (see [`TraceLines::into_jsonl`]): what a reader of `trace.jsonl` takes, so one
+/// reader serves both formats (`poinav simulate --trace-format bin --mcap`).
+#[allow(missing_debug_implementations)]
+pub struct JsonlStream<R> {
+    lines: TraceLines<R>,
+    line: Vec<u8>,
+    at: usize,
+}
+
+impl<R> TraceLines<R> {
+    /// These lines as a JSON Lines byte stream; an error reading them is an
+    /// [`std::io::Error`] whose source is the [`SimError`].
+    pub fn into_jsonl(self) -> JsonlStream<R> {
+        JsonlStream {
+            lines: self,
+            line: Vec::new(),
+            at: 0,
+        }
+    }
+}
+
+impl<R: BufRead> std::io::Read for JsonlStream<R> {
+    fn read(&mut self, out: &mut [u8]) -> std::io::Result<usize> {
+        let have = self.fill_buf()?;
+        let n = have.len().min(out.len());
+        out[..n].copy_from_slice(&have[..n]);
+        self.consume(n);
+        Ok(n)
+    }
+}
+
+impl<R: BufRead> BufRead for JsonlStream<R> {
+    fn fill_buf(&mut self) -> std::io::Result<&[u8]> {
+        if self.at == self.line.len() {
+            match self.lines.next() {
+                None => return Ok(&[]),
+                Some(Err(e)) => return Err(std::io::Error::other(e)),
+                Some(Ok(line)) => {
+                    self.line.clear();
+                    self.line.extend_from_slice(line.as_bytes());
+                    self.line.push(b'\n');
+                    self.at = 0;
+                }
+            }
+        }
+        Ok(&self.line[self.at..])
+    }
+
+    fn consume(&mut self, n: usize) {
+        self.at = (self.at + n).min(self.line.len());
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -371,6 +425,38 @@ mod tests {
         };
         crate::run_with(&scenario, variant, &floor, Some(out)).unwrap();
         buf
+    }
+
+    #[test]
+    fn a_compact_trace_streams_as_the_bytes_of_the_json_lines_trace() {
+        use std::io::Read;
+        let jsonl = traced("doorway.toml", Some("door-0.80"), 1, TraceFormat::Jsonl);
+        let bin = traced("doorway.toml", Some("door-0.80"), 1, TraceFormat::Bin);
+        assert!(
+            bin.len() < jsonl.len() / 2,
+            "{} vs {}",
+            bin.len(),
+            jsonl.len()
+        );
+        for source in [&bin, &jsonl] {
+            let mut out = Vec::new();
+            read_lines(source.as_slice(), "t")
+                .unwrap()
+                .into_jsonl()
+                .read_to_end(&mut out)
+                .unwrap();
+            assert!(out == jsonl, "{} vs {} bytes", out.len(), jsonl.len());
+        }
+        // A damaged record is an I/O error carrying the trace's name.
+        let cut = &bin[..bin.len() - 7];
+        let mut out = Vec::new();
+        let e = read_lines(cut, "cut.bin")
+            .unwrap()
+            .into_jsonl()
+            .read_to_end(&mut out)
+            .unwrap_err();
+        assert!(e.to_string().contains("cut.bin"), "{e}");
+        assert!(e.to_string().contains("truncated"), "{e}");
     }
 
     fn lines(bytes: &[u8]) -> Vec<String> {

@@ -35,8 +35,9 @@ pub struct Args {
     no_trace: bool,
     /// The trace's format: `jsonl` (trace.jsonl, what every reader takes) or `bin`
     /// (trace.bin: fixed-size binary records, about a quarter of the bytes and a small part of
-    /// the time to write; `poinav_sim::trace_bin::read_lines` gives back the JSON Lines; the
-    /// viewer's playback, `--mcap` and the Python package read trace.jsonl only).
+    /// the time to write; `poinav_sim::trace_bin::read_lines` gives back the JSON Lines, and
+    /// `--mcap` records from it; the viewer's playback and the Python package read
+    /// trace.jsonl only).
     #[arg(
         long,
         value_name = "FORMAT",
@@ -59,8 +60,13 @@ pub enum TraceFormatArg {
     Bin,
 }
 
-/// Writes the ROS 2 recording of `run` (its trace.jsonl, floor and Nav2 map) to `path`.
-fn write_mcap(scenario: &Scenario, run: &VariantRun, path: &Path) -> anyhow::Result<()> {
+/// Writes the ROS 2 recording of `run` (its trace in `format`, floor and Nav2 map) to `path`.
+fn write_mcap(
+    scenario: &Scenario,
+    run: &VariantRun,
+    format: poinav_sim::TraceFormat,
+    path: &Path,
+) -> anyhow::Result<()> {
     let profile = poinav_sim::scenario::load_profile(&scenario.building.profile, &scenario.dir)?;
     let options = poinav_nav::Nav2Options::default();
     let map = poinav_mcap::storey_map(run.building.floor(), &profile, &options)?;
@@ -69,8 +75,22 @@ fn write_mcap(scenario: &Scenario, run: &VariantRun, path: &Path) -> anyhow::Res
         map: &map,
         dt: scenario.dt,
     };
-    let trace = run.dir.join(poinav_sim::output::TRACE);
-    let summary = poinav_mcap::write_recording(&trace, &scene, path)?;
+    let summary = match format {
+        poinav_sim::TraceFormat::Jsonl => {
+            let trace = run.dir.join(poinav_sim::output::TRACE);
+            poinav_mcap::write_recording(&trace, &scene, path)?
+        }
+        poinav_sim::TraceFormat::Bin => {
+            // The compact trace read as the JSON Lines it stands for.
+            let trace = run.dir.join(poinav_sim::output::TRACE_BIN);
+            let open = || -> Result<Box<dyn std::io::BufRead>, std::io::Error> {
+                let lines =
+                    poinav_sim::trace_bin::read_file(&trace).map_err(std::io::Error::other)?;
+                Ok(Box::new(lines.into_jsonl()))
+            };
+            poinav_mcap::write_recording_from(&open, &trace, &scene, path)?
+        }
+    };
     outln!(
         "wrote ROS 2 recording to {} ({} steps, {} messages)",
         path.display(),
@@ -198,9 +218,6 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         TraceFormatArg::Jsonl => poinav_sim::TraceFormat::Jsonl,
         TraceFormatArg::Bin => poinav_sim::TraceFormat::Bin,
     };
-    if args.mcap.is_some() && format == poinav_sim::TraceFormat::Bin {
-        anyhow::bail!("--mcap records from trace.jsonl: leave out --trace-format bin");
-    }
     let runs = run_scenario_as(
         &scenario,
         args.variant.as_deref(),
@@ -239,7 +256,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
                 (Some(v), n) if n > 1 => target.with_extension(format!("{v}.mcap")),
                 _ => target.clone(),
             };
-            write_mcap(&scenario, r, &path)?;
+            write_mcap(&scenario, r, format, &path)?;
         }
     }
     outln!("outputs in {}", args.output.display());

@@ -2,7 +2,8 @@
 //! decodes every message with `mcap` + `mcap-ros2-support` and with `rosbags`, and compares
 //! topics, counts, scans, odometry and the occupancy grid with the run's trace and the Nav2
 //! map `poinav_nav::write_bundle` writes for the same storey and profile. The same run
-//! twice gives the same bytes; `--trace-format bin`'s trace reads back as the same lines.
+//! twice gives the same bytes; `--trace-format bin`'s trace reads back as the same lines and
+//! records the same bytes.
 //! `poinav serve --record` writes the live session when stopped.
 
 mod common;
@@ -184,7 +185,10 @@ fn a_recording_is_byte_identical_run_to_run_and_needs_a_trace() {
         .unwrap();
     assert!(bin.len() > 500, "{} lines", bin.len());
     assert_eq!(bin, jsonl.lines().collect::<Vec<_>>());
-    let (code, _, stderr) = common::poinav(&[
+    // The recording made from the compact trace is the one made from the JSON Lines trace,
+    // byte for byte.
+    let from_bin = tmp.path().join("from-bin.mcap");
+    let (code, stdout, stderr) = common::poinav(&[
         OsStr::new("simulate"),
         file.as_os_str(),
         OsStr::new("-o"),
@@ -192,10 +196,18 @@ fn a_recording_is_byte_identical_run_to_run_and_needs_a_trace() {
         OsStr::new("--trace-format"),
         OsStr::new("bin"),
         OsStr::new("--mcap"),
-        tmp.path().join("x.mcap").as_os_str(),
+        from_bin.as_os_str(),
     ]);
-    assert_ne!(code, 0, "{stderr}");
-    assert!(stderr.contains("--trace-format bin"), "{stderr}");
+    assert_eq!(code, 0, "{stdout}{stderr}");
+    assert!(stdout.contains("wrote ROS 2 recording"), "{stdout}");
+    let from_bin = std::fs::read(&from_bin).unwrap();
+    assert!(from_bin.len() > 10_000, "{} bytes", from_bin.len());
+    assert!(
+        from_bin == bytes[0],
+        "{} vs {} bytes",
+        from_bin.len(),
+        bytes[0].len()
+    );
 }
 
 #[test]
