@@ -37,6 +37,15 @@ pub struct Reading {
     pub dirs: [DVec2; 5],
 }
 
+impl Reading {
+    /// A reading of nothing (five rays of zero length, no directions): a slot's value before
+    /// the rays are cast into it.
+    pub const NONE: Reading = Reading {
+        rays: [RayHit::NONE; 5],
+        dirs: [DVec2::ZERO; 5],
+    };
+}
+
 /// Casts the five rays of robot `me` from `pos` at `heading`.
 pub fn sense(world: &World, me: usize, pos: DVec2, heading: f64, range: f64) -> Reading {
     sense_along(world, me, pos, directions(heading), range)

@@ -534,22 +534,7 @@ impl<'f> Sim<'f> {
         // The world holds every robot's footprint at its current pose (set when placed, then
         // by each committed move): only their grid is rebuilt.
         self.world.refresh_robots();
-        let world = &self.world;
-        self.robots
-            .par_iter()
-            .zip(self.ray_dirs.par_iter_mut())
-            .enumerate()
-            .with_min_len(8)
-            .map(|(i, (r, (key, dirs)))| {
-                let h = r.state.heading;
-                if *key != Some(h.to_bits()) {
-                    *key = Some(h.to_bits());
-                    *dirs = sensor::directions(h);
-                }
-                sensor::sense_along(world, i, r.state.pos, *dirs, RANGE_M)
-            })
-            .collect_into_vec(&mut self.readings);
-        self.perceive_all(t);
+        self.sense_and_perceive(t);
         self.current.clear();
         let control = self.decide_all(t);
         let mut actions = Vec::with_capacity(n);
@@ -571,8 +556,10 @@ impl<'f> Sim<'f> {
         self.step += 1;
     }
 
-    /// Algorithm 1's perception for every robot, then C-1 at the zone level.
-    fn perceive_all(&mut self, t: f64) {
+    /// Every robot's five rays and Algorithm 1's perception of them (one parallel pass: a
+    /// robot perceives its reading while it is in the cache, and the pool is called once less
+    /// per step), then C-1 at the zone level.
+    fn sense_and_perceive(&mut self, t: f64) {
         let env = Env {
             floor: self.floor,
             nav: &self.nav,
@@ -595,14 +582,24 @@ impl<'f> Sim<'f> {
         // Each robot perceives on a copy of its mind (the copies reuse last step's memory).
         let mut next = std::mem::take(&mut self.next_minds);
         next.resize_with(self.minds.len(), Mind::new);
-        let (db, minds, readings) = (&self.db, &self.minds, &self.readings);
+        self.readings.resize(self.robots.len(), Reading::NONE);
+        let (db, minds, robots, world) = (&self.db, &self.minds, &self.robots, &self.world);
         let guesses: Vec<Perceived> = next
             .par_iter_mut()
+            .zip(self.readings.par_iter_mut())
+            .zip(self.ray_dirs.par_iter_mut())
             .enumerate()
             .with_min_len(8)
-            .map(|(i, mind)| {
+            .map(|(i, ((mind, reading), (key, dirs)))| {
+                let r = &robots[i];
+                let h = r.state.heading;
+                if *key != Some(h.to_bits()) {
+                    *key = Some(h.to_bits());
+                    *dirs = sensor::directions(h);
+                }
+                *reading = sensor::sense_along(world, i, r.state.pos, *dirs, RANGE_M);
                 mind.clone_from(&minds[i]);
-                run(i, db, mind, &readings[i])
+                run(i, db, mind, reading)
             })
             .collect();
         self.perceptions.clear();

@@ -147,11 +147,7 @@ fn decode(b: &[u8; RECORD_BYTES], names: &Names) -> Option<(StepRecord, f64, usi
         z if (z as usize) < names.zones.len() => Some(ZoneIdx::new(z as usize)),
         _ => return None,
     };
-    let mut rays = [RayHit {
-        dist: 0.0,
-        target: Target::None,
-        passages: Passages::default(),
-    }; 5];
+    let mut rays = [RayHit::NONE; 5];
     for (k, ray) in rays.iter_mut().enumerate() {
         let o = 96 + k * RAY_BYTES;
         let index = u32_at(b, o + 8);

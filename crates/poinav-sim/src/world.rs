@@ -125,6 +125,19 @@ pub struct RayHit {
     pub passages: Passages,
 }
 
+impl RayHit {
+    /// A ray of zero length that hit nothing (a placeholder).
+    pub const NONE: RayHit = RayHit {
+        dist: 0.0,
+        target: Target::None,
+        passages: Passages {
+            n: 0,
+            doors: [0; Passages::CAP],
+            dist: [0.0; Passages::CAP],
+        },
+    };
+}
+
 #[derive(Debug, Clone, Copy)]
 struct Seg {
     a: DVec2,
