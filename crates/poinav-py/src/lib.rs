@@ -31,6 +31,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(model::open_path, m)?)?;
     m.add_function(wrap_pyfunction!(model::open_bytes, m)?)?;
     m.add_function(wrap_pyfunction!(simulate::simulate, m)?)?;
+    m.add_function(wrap_pyfunction!(simulate::read_trace, m)?)?;
     m.add_function(wrap_pyfunction!(model::bench_psets, m)?)?;
     m.add_function(wrap_pyfunction!(model::bench_meshes, m)?)?;
     Ok(())

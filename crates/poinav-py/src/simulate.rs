@@ -1,5 +1,6 @@
 //! `simulate`: one run of a scenario (`poinav simulate`), its summary as a dict, the final POI
-//! records the robots read and updated, and the trace as numpy columns.
+//! records the robots read and updated, and the trace as numpy columns (also `read_trace`, of a
+//! trace file in either format).
 
 use std::path::{Path, PathBuf};
 
@@ -28,11 +29,19 @@ struct Columns {
 fn columns(trace: &[u8]) -> Result<Columns, String> {
     let mut c = Columns::default();
     for (n, line) in trace.split(|b| *b == b'\n').enumerate() {
+        c.push_line(line, n + 1)?;
+    }
+    Ok(c)
+}
+
+impl Columns {
+    /// Adds the row of trace line `n` (1-based; an empty line adds nothing).
+    fn push_line(&mut self, line: &[u8], n: usize) -> Result<(), String> {
         if line.is_empty() {
-            continue;
+            return Ok(());
         }
-        let v: Value =
-            serde_json::from_slice(line).map_err(|e| format!("trace line {}: {e}", n + 1))?;
+        let c = self;
+        let v: Value = serde_json::from_slice(line).map_err(|e| format!("trace line {n}: {e}"))?;
         let f = |k: &str| v[k].as_f64().unwrap_or(f64::NAN);
         let name = v["robot"].as_str().unwrap_or_default();
         let r = match c.robots.iter().position(|x| x == name) {
@@ -57,8 +66,46 @@ fn columns(trace: &[u8]) -> Result<Columns, String> {
                     .unwrap_or(f64::NAN),
             );
         }
+        Ok(())
     }
-    Ok(c)
+
+    /// The columns as the dict `simulate` and `read_trace` return.
+    fn into_dict(self, py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
+        let t = PyDict::new(py);
+        t.set_item("robots", self.robots)?;
+        t.set_item("step", numpy::PyArray1::from_vec(py, self.step))?;
+        t.set_item("t", numpy::PyArray1::from_vec(py, self.t))?;
+        t.set_item("robot", numpy::PyArray1::from_vec(py, self.robot))?;
+        t.set_item("xy", convert::array2(py, self.xy, 2)?)?;
+        t.set_item(
+            "heading_deg",
+            numpy::PyArray1::from_vec(py, self.heading_deg),
+        )?;
+        t.set_item("speed", numpy::PyArray1::from_vec(py, self.speed))?;
+        t.set_item(
+            "omega_deg_s",
+            numpy::PyArray1::from_vec(py, self.omega_deg_s),
+        )?;
+        t.set_item("ray_m", convert::array2(py, self.rays, 5)?)?;
+        Ok(t)
+    }
+}
+
+/// Reads a trace file `poinav simulate` wrote, `trace.jsonl` or the compact `trace.bin`
+/// (`--trace-format bin`), into the numpy columns `simulate` returns as `trace`.
+#[pyfunction]
+pub fn read_trace<'py>(py: Python<'py>, path: PathBuf) -> PyResult<Bound<'py, PyDict>> {
+    let cols = py.detach(|| -> PyResult<Columns> {
+        let mut c = Columns::default();
+        let lines = poinav_sim::trace_bin::read_file(&path).map_err(to_py)?;
+        for (n, line) in lines.enumerate() {
+            let line = line.map_err(to_py)?;
+            c.push_line(line.as_bytes(), n + 1)
+                .map_err(|e| PoinavError::new_err(format!("{}: {e}", path.display())))?;
+        }
+        Ok(c)
+    })?;
+    cols.into_dict(py)
 }
 
 /// Runs `variant` of the scenario (a file, or TOML text with `text=True`; relative paths are
@@ -152,17 +199,7 @@ pub fn simulate<'py>(
         .collect();
     d.set_item("poi", convert::json(py, &Value::Array(poi))?)?;
     if let Some(c) = cols {
-        let t = PyDict::new(py);
-        t.set_item("robots", c.robots)?;
-        t.set_item("step", numpy::PyArray1::from_vec(py, c.step))?;
-        t.set_item("t", numpy::PyArray1::from_vec(py, c.t))?;
-        t.set_item("robot", numpy::PyArray1::from_vec(py, c.robot))?;
-        t.set_item("xy", convert::array2(py, c.xy, 2)?)?;
-        t.set_item("heading_deg", numpy::PyArray1::from_vec(py, c.heading_deg))?;
-        t.set_item("speed", numpy::PyArray1::from_vec(py, c.speed))?;
-        t.set_item("omega_deg_s", numpy::PyArray1::from_vec(py, c.omega_deg_s))?;
-        t.set_item("ray_m", convert::array2(py, c.rays, 5)?)?;
-        d.set_item("trace", t)?;
+        d.set_item("trace", c.into_dict(py)?)?;
     }
     if let (true, true, Some(dir)) = (stream, trace, &output) {
         let path = dir.join(poinav_sim::output::TRACE);

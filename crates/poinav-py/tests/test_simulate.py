@@ -83,3 +83,31 @@ def test_stream_trace_to_file(tmp_path):
     assert sorted(streamed["outputs"]) == sorted(p.replace("kept", "streamed") for p in kept["outputs"])
     with pytest.raises(poinav.PoinavError, match="output="):
         poinav.simulate(DOORWAY, "door-0.80", stream=True)
+
+
+def test_read_trace_of_either_format(tmp_path):
+    import subprocess
+
+    kept = poinav.simulate(DOORWAY, "door-0.80")["trace"]
+    out = {}
+    for fmt in ["jsonl", "bin"]:
+        subprocess.run([str(CLI), "--quiet", "simulate", str(DOORWAY), "--variant", "door-0.80",
+                        "-o", str(tmp_path / fmt), "--trace-format", fmt], check=True)
+        out[fmt] = poinav.read_trace(tmp_path / fmt / "door-0.80" / f"trace.{fmt}")
+    bin_path = tmp_path / "bin" / "door-0.80" / "trace.bin"
+    assert bin_path.stat().st_size * 2 < (tmp_path / "jsonl" / "door-0.80" / "trace.jsonl").stat().st_size
+    for cols in out.values():
+        assert cols["robots"] == kept["robots"] == ["Robot2"]
+        assert set(cols) == set(kept)
+        for k in kept:
+            if k != "robots":
+                assert cols[k].dtype == kept[k].dtype and cols[k].shape == kept[k].shape, k
+                assert np.array_equal(cols[k], kept[k]), k
+    assert len(kept["t"]) > 100
+    # A damaged compact trace and a missing file raise PoinavError naming the file.
+    cut = tmp_path / "cut.bin"
+    cut.write_bytes(bin_path.read_bytes()[:-9])
+    with pytest.raises(poinav.PoinavError, match="cut.bin"):
+        poinav.read_trace(cut)
+    with pytest.raises(poinav.PoinavError, match="missing.bin"):
+        poinav.read_trace(tmp_path / "missing.bin")

@@ -36,7 +36,7 @@ pub struct Args {
     /// The trace's format: `jsonl` (trace.jsonl, what every reader takes) or `bin`
     /// (trace.bin: fixed-size binary records, about a quarter of the bytes and a small part of
     /// the time to write; `poinav_sim::trace_bin::read_lines` gives back the JSON Lines, and
-    /// `--mcap` records from it; the viewer's playback and the Python package read
+    /// `--mcap` and Python's `poinav.read_trace` read it too; the viewer's playback reads
     /// trace.jsonl only).
     #[arg(
         long,

@@ -27,6 +27,7 @@ __version__: str = _native.__version__
 __all__ = [
     "open",
     "simulate",
+    "read_trace",
     "Model",
     "Enrichment",
     "Building",
@@ -80,3 +81,12 @@ def simulate(scenario: Union[PathLike, str], variant: Optional[str] = None, *,
         trace,
         stream,
     )
+
+
+def read_trace(path: PathLike) -> Dict[str, Any]:
+    """Read a trace ``poinav simulate`` wrote: ``trace.jsonl``, or the compact ``trace.bin``
+    (``--trace-format bin``, about a quarter of the bytes), into the numpy columns
+    ``simulate`` returns as ``trace``. Raises ``PoinavError`` naming the file when it is
+    missing or damaged.
+    """
+    return _native.read_trace(os.fspath(path))
