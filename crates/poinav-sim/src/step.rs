@@ -283,6 +283,10 @@ pub struct Sim<'f> {
     observations: Vec<(String, Observation, f64)>,
     records: Vec<StepRecord>,
     current: Vec<StepRecord>,
+    /// Scratch space of a step: the robots' navigation actions and events (kept from step
+    /// to step for their memory).
+    actions: Vec<Command>,
+    step_events: Vec<Vec<Event>>,
     touching: Vec<Vec<Owner>>,
     arrived: Vec<bool>,
     readings: Vec<Reading>,
@@ -420,6 +424,8 @@ impl<'f> Sim<'f> {
             observations: Vec::new(),
             records: Vec::new(),
             current: Vec::with_capacity(n),
+            actions: Vec::with_capacity(n),
+            step_events: Vec::new(),
             touching: vec![Vec::new(); n],
             arrived: vec![false; n],
             readings: Vec::with_capacity(n),
@@ -530,26 +536,27 @@ impl<'f> Sim<'f> {
     /// committed in robot order, a move redone when a robot near it moved before it.
     pub fn tick(&mut self, advance: bool) {
         let t = self.step as f64 * self.opts.dt;
-        let n = self.robots.len();
         // The world holds every robot's footprint at its current pose (set when placed, then
         // by each committed move): only their grid is rebuilt.
         self.world.refresh_robots();
         self.sense_and_perceive(t);
-        self.current.clear();
-        let control = self.decide_all(t);
-        let mut actions = Vec::with_capacity(n);
-        for (action, events, record) in control {
-            actions.push(action);
-            self.events.extend(events);
-            self.current.push(record);
+        let mut actions = std::mem::take(&mut self.actions);
+        let mut events = std::mem::take(&mut self.step_events);
+        self.decide_all(t, &mut actions, &mut events);
+        for e in &mut events {
+            self.events.append(e);
         }
+        self.step_events = events;
         if self.opts.record {
             self.records.extend_from_slice(&self.current);
         }
+        if advance {
+            self.move_all(&actions, t);
+        }
+        self.actions = actions;
         if !advance {
             return;
         }
-        self.move_all(&actions, t);
         for r in &mut self.robots {
             r.state.brush.advance(self.opts.dt);
         }
@@ -634,9 +641,14 @@ impl<'f> Sim<'f> {
         algorithm1::zone_coordination(&env, &self.minds, &nearest, &mut self.db, &mut sink);
     }
 
-    /// Every robot's controller command shaped by Algorithm 1, with its events and record.
-    fn decide_all(&mut self, t: f64) -> Vec<(Command, Vec<Event>, StepRecord)> {
+    /// Every robot's controller command shaped by Algorithm 1 into `actions`, its events of
+    /// this step into `events` (one list per robot) and its record into the step's records
+    /// (written in place: the records are about 500 bytes each).
+    fn decide_all(&mut self, t: f64, actions: &mut Vec<Command>, events: &mut Vec<Vec<Event>>) {
         let step = self.step;
+        let n = self.robots.len();
+        actions.resize(n, Command::default());
+        events.resize_with(n, Vec::new);
         let (nav, floor, behaviour) = (&self.nav, self.floor, &self.opts.behaviour);
         let (readings, perceptions) = (&self.readings, &self.perceptions);
         self.ctrls
@@ -644,77 +656,80 @@ impl<'f> Sim<'f> {
             .zip(self.minds.par_iter_mut())
             .zip(self.robots.par_iter_mut())
             .zip(self.arrived.par_iter_mut())
+            .zip(actions.par_iter_mut())
+            .zip(events.par_iter_mut())
             .enumerate()
             .with_min_len(8)
-            .map(|(i, (((ctrl, mind), robot), arrived))| {
-                let p = &perceptions[i];
-                let ctx = Ctx {
-                    t,
-                    pos: robot.state.pos,
-                    heading: robot.state.heading,
-                    speed: robot.state.speed,
-                    limits: &robot.limits,
-                    left_ref: p.left_ref,
-                    right_ref: p.right_ref,
-                    nav,
-                };
-                let mut control = Vec::new();
-                let cmd = ctrl.command(&ctx, &mut control);
-                let mode = ctrl.mode();
-                let action =
-                    algorithm1::decide(p, cmd, robot, mind, t, mode == Mode::Keys, behaviour);
-                let mut events = Vec::new();
-                for c in &control {
-                    let kind = match c {
-                        ControlEvent::Key(key, down) => EventKind::Key {
-                            key: key.clone(),
-                            down: *down,
-                        },
-                        ControlEvent::BrushToggle => {
-                            let b = &mut robot.state.brush;
-                            b.on = !b.on;
-                            EventKind::Brush { on: b.on }
-                        }
-                    };
-                    events.push(Event {
-                        step,
+            .map(
+                |(i, (((((ctrl, mind), robot), arrived), action_out), events))| {
+                    let p = &perceptions[i];
+                    let ctx = Ctx {
                         t,
-                        robot: robot.name.clone(),
-                        kind,
-                    });
-                }
-                if mode == Mode::Arrived && !*arrived {
-                    *arrived = true;
-                    if let Some(z) = ctrl.target {
-                        let zr = &floor.zones[z.get()];
+                        pos: robot.state.pos,
+                        heading: robot.state.heading,
+                        speed: robot.state.speed,
+                        limits: &robot.limits,
+                        left_ref: p.left_ref,
+                        right_ref: p.right_ref,
+                        nav,
+                    };
+                    let mut control = Vec::new();
+                    let cmd = ctrl.command(&ctx, &mut control);
+                    let mode = ctrl.mode();
+                    let action =
+                        algorithm1::decide(p, cmd, robot, mind, t, mode == Mode::Keys, behaviour);
+                    *action_out = action;
+                    for c in &control {
+                        let kind = match c {
+                            ControlEvent::Key(key, down) => EventKind::Key {
+                                key: key.clone(),
+                                down: *down,
+                            },
+                            ControlEvent::BrushToggle => {
+                                let b = &mut robot.state.brush;
+                                b.on = !b.on;
+                                EventKind::Brush { on: b.on }
+                            }
+                        };
                         events.push(Event {
                             step,
                             t,
                             robot: robot.name.clone(),
-                            kind: EventKind::Arrived {
-                                zone: zr.id.clone(),
-                                name: zr.name.clone(),
-                            },
+                            kind,
                         });
                     }
-                }
-                let record = StepRecord {
-                    step,
-                    robot: i as u32,
-                    pos: robot.state.pos,
-                    heading: robot.state.heading,
-                    speed: robot.state.actual_speed,
-                    omega: robot.state.omega,
-                    action,
-                    rays: readings[i].rays,
-                    roles: p.roles,
-                    mode,
-                    zone: mind.zone,
-                    brush: robot.state.brush,
-                };
-                (action, events, record)
-            })
-            .collect()
+                    if mode == Mode::Arrived && !*arrived {
+                        *arrived = true;
+                        if let Some(z) = ctrl.target {
+                            let zr = &floor.zones[z.get()];
+                            events.push(Event {
+                                step,
+                                t,
+                                robot: robot.name.clone(),
+                                kind: EventKind::Arrived {
+                                    zone: zr.id.clone(),
+                                    name: zr.name.clone(),
+                                },
+                            });
+                        }
+                    }
+                    StepRecord {
+                        step,
+                        robot: i as u32,
+                        pos: robot.state.pos,
+                        heading: robot.state.heading,
+                        speed: robot.state.actual_speed,
+                        omega: robot.state.omega,
+                        action,
+                        rays: readings[i].rays,
+                        roles: p.roles,
+                        mode,
+                        zone: mind.zone,
+                        brush: robot.state.brush,
+                    }
+                },
+            )
+            .collect_into_vec(&mut self.current);
     }
 
     /// Moves every robot: computed in parallel against the boxes at the start of the step,
