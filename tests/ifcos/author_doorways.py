@@ -13,38 +13,19 @@ from the room's west wall for odd i (the corner case of real houses). Each door 
 Prints JSON: {"doors": [{"name", "width", "centre": [x, y], "room"}], "corridor": name}.
 """
 
-import hashlib
 import json
 import sys
-import uuid
 
 import ifcopenshell
-import ifcopenshell.guid
+from authoring import Authoring
 
 out = sys.argv[1]
 widths = [float(w) for w in sys.argv[2:]]
 f = ifcopenshell.file(schema="IFC4")
 
 
-def gid(name):
-    h = hashlib.md5(("poinav-doorways:" + name).encode()).hexdigest()
-    return ifcopenshell.guid.compress(uuid.UUID(h).hex)
-
-
-def pt(*c):
-    return f.createIfcCartesianPoint([float(x) for x in c])
-
-
-def d3(*c):
-    return f.createIfcDirection([float(x) for x in c])
-
-
-def axis(x=0.0, y=0.0, z=0.0):
-    return f.createIfcAxis2Placement3D(pt(x, y, z), d3(0, 0, 1), d3(1, 0, 0))
-
-
-def place(rel=None):
-    return f.createIfcLocalPlacement(rel, axis())
+a = Authoring(f, "poinav-doorways:")
+gid, pt, d3, axis, place = a.gid, a.pt, a.d3, a.axis, a.place
 
 
 ctx = f.createIfcGeometricRepresentationContext(None, "Model", 3, 1.0e-5, axis(), None)

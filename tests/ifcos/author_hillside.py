@@ -30,14 +30,12 @@ its north wall (y = 8) and on to 3.40 at y = 20 behind it. So the hillside door 
 terrain at 3.02 m, 0.6 m beyond its outer face; the balcony door is 3 m above the terrain.
 """
 
-import hashlib
 import json
 import os
 import sys
-import uuid
 
 import ifcopenshell
-import ifcopenshell.guid
+from authoring import Authoring
 
 # Terrain heights by y (piecewise linear between these rows), and the rows' x extents.
 TERRAIN_ROWS = [(-10.0, 0.0), (0.0, 0.0), (8.0, 3.0), (20.0, 3.4)]
@@ -47,21 +45,8 @@ TERRAIN_COLS = [-10.0, 0.0, 10.0, 20.0]
 def build(variant):
     f = ifcopenshell.file(schema="IFC4")
 
-    def gid(name):
-        h = hashlib.md5(("poinav-test-hillside:" + name).encode()).hexdigest()
-        return ifcopenshell.guid.compress(uuid.UUID(h).hex)
-
-    def pt(*c):
-        return f.createIfcCartesianPoint([float(x) for x in c])
-
-    def d3(*c):
-        return f.createIfcDirection([float(x) for x in c])
-
-    def axis(x=0.0, y=0.0, z=0.0):
-        return f.createIfcAxis2Placement3D(pt(x, y, z), d3(0, 0, 1), d3(1, 0, 0))
-
-    def place(rel=None, x=0.0, y=0.0, z=0.0):
-        return f.createIfcLocalPlacement(rel, axis(x, y, z))
+    a = Authoring(f, "poinav-test-hillside:")
+    gid, pt, d3, axis, place = a.gid, a.pt, a.d3, a.axis, a.place
 
     ctx = f.createIfcGeometricRepresentationContext(
         None, "Model", 3, 1.0e-5, f.createIfcAxis2Placement3D(pt(0, 0, 0), None, None), None

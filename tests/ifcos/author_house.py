@@ -26,35 +26,14 @@ import json
 import sys
 
 import ifcopenshell
-import ifcopenshell.guid
+from authoring import Authoring
 
 f = ifcopenshell.file(schema="IFC4")
 _n = [0]
 
 
-def gid(name):
-    """A fixed GlobalId from a name (so tests can name elements)."""
-    import hashlib
-    import uuid
-
-    h = hashlib.md5(("poinav-test-house:" + name).encode()).hexdigest()
-    return ifcopenshell.guid.compress(uuid.UUID(h).hex)
-
-
-def pt(*c):
-    return f.createIfcCartesianPoint([float(x) for x in c])
-
-
-def d3(*c):
-    return f.createIfcDirection([float(x) for x in c])
-
-
-def axis(x=0.0, y=0.0, z=0.0):
-    return f.createIfcAxis2Placement3D(pt(x, y, z), d3(0, 0, 1), d3(1, 0, 0))
-
-
-def place(rel=None, x=0.0, y=0.0, z=0.0):
-    return f.createIfcLocalPlacement(rel, axis(x, y, z))
+a = Authoring(f, "poinav-test-house:")
+gid, pt, d3, axis, place = a.gid, a.pt, a.d3, a.axis, a.place
 
 
 owner = None

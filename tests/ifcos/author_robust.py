@@ -32,35 +32,25 @@ JSON object mapping each case name to {min, max, volume, area} of IfcOpenShell's
 cannot be made, which poinav names in its warnings.
 """
 
-import hashlib
 import json
 import math
 import sys
-import uuid
 
 import ifcopenshell
 import ifcopenshell.geom
-import ifcopenshell.guid
 import numpy as np
+from authoring import Authoring
 
 f = ifcopenshell.file(schema="IFC4")
 
 
-def gid(name):
-    h = hashlib.md5(("poinav-test-robust:" + name).encode()).hexdigest()
-    return ifcopenshell.guid.compress(uuid.UUID(h).hex)
-
-
-def pt(*c):
-    return f.createIfcCartesianPoint([float(x) for x in c])
-
-
-def d(*c):
-    return f.createIfcDirection([float(x) for x in c])
+a = Authoring(f, "poinav-test-robust:")
+gid, pt, d = a.gid, a.pt, a.d3
 
 
 def ax(x=0.0, y=0.0, z=0.0, axis=None, ref=None):
-    return f.createIfcAxis2Placement3D(pt(x, y, z), d(*axis) if axis else None, d(*ref) if ref else None)
+    """A placement whose axis and reference direction default to IFC's (left out)."""
+    return a.axis(x, y, z, axis, ref)
 
 
 ctx = f.createIfcGeometricRepresentationContext(None, "Model", 3, 1.0e-5, ax(), None)

@@ -33,37 +33,22 @@ IfcOpenShell gives none or a wrong one, and `ifcos_wrong`, why IfcOpenShell's sh
 to be trusted.
 """
 
-import hashlib
 import json
 import math
 import os
 import sys
-import uuid
 
 import ifcopenshell
 import ifcopenshell.geom
-import ifcopenshell.guid
 import numpy as np
+from authoring import Authoring
 
 f = ifcopenshell.file(schema="IFC4")
 W = math.sqrt(0.5)
 
 
-def gid(name):
-    h = hashlib.md5(("poinav-test-solids:" + name).encode()).hexdigest()
-    return ifcopenshell.guid.compress(uuid.UUID(h).hex)
-
-
-def pt(*c):
-    return f.createIfcCartesianPoint([float(x) for x in c])
-
-
-def d3(*c):
-    return f.createIfcDirection([float(x) for x in c])
-
-
-def ax3(x=0.0, y=0.0, z=0.0, axis=(0, 0, 1), ref=(1, 0, 0)):
-    return f.createIfcAxis2Placement3D(pt(x, y, z), d3(*axis), d3(*ref))
+a = Authoring(f, "poinav-test-solids:")
+gid, pt, d3, ax3 = a.gid, a.pt, a.d3, a.axis
 
 
 def ax2(x=0.0, y=0.0):
