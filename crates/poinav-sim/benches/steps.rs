@@ -182,9 +182,12 @@ fn bench_second(
         b.iter_batched(
             || Sim::new(floor, setups, opts.clone()).unwrap(),
             |mut sim| {
-                for _ in 0..60 {
-                    sim.tick(true);
-                }
+                // As `poinav simulate` runs it: the loop on a thread of the pool.
+                poinav_sim::on_pool(|| {
+                    for _ in 0..60 {
+                        sim.tick(true);
+                    }
+                });
                 sim
             },
             BatchSize::PerIteration,
