@@ -12,7 +12,7 @@ use poinav_nav::{
     audit, AuditOptions, AuditReport, Building, Floor, FloorDoor, FloorObstacle, FloorZone,
     NavOptions, ObstacleKind,
 };
-use poinav_poi::{AccessibilityStatus, RobotProfile};
+use poinav_poi::RobotProfile;
 
 /// A 22-character GlobalId-like id.
 fn gid(tag: &str) -> String {
@@ -26,8 +26,8 @@ fn door(tag: &str, x: f64, width: f64) -> FloorDoor {
         ring: rect(x, 2.0 - width / 2.0, x + 0.2, 2.0 + width / 2.0),
         center: DVec2::new(x + 0.1, 2.0),
         clear_width_m: width,
-        status: AccessibilityStatus::FullAccess,
-        min_clearance_width_m: 0.9,
+        classified_width_m: Some(width),
+        blocked: None,
         roles: vec![],
         spaces: None,
         doorless: false,

@@ -8,8 +8,9 @@ use std::collections::{BTreeMap, HashMap};
 
 use poinav_geom::{FloorPlan, PlanItemKind, PlanSource};
 use poinav_ifc::Model;
+use poinav_nav::door_status::Block;
 use poinav_nav::{Floor, FloorDoor, FloorObstacle, FloorZone, ObstacleKind};
-use poinav_poi::{AccessibilityStatus, Classification, Classified, Role};
+use poinav_poi::{AccessibilityKind, AccessibilityStatus, Classification, Classified, Role};
 
 use crate::error::BridgeError;
 
@@ -75,6 +76,27 @@ pub(crate) fn roles(c: Option<&Classified>) -> Vec<Role> {
     r
 }
 
+/// The profile-free facts a door's status is computed from (`poinav_nav::door_status`), as
+/// the classification `c` made its verdict: the width its clear-width rule read, or the rule
+/// that blocks it and why. A door no rule gave an accessibility has neither (unknown). A door a
+/// user's rule judges as stairs or a slope, which no fact of a door holds, is blocked by that
+/// rule for every profile when it blocked the classification's, else unknown.
+pub(crate) fn door_facts(c: Option<&Classified>) -> (Option<f64>, Option<Block>) {
+    let Some((c, a)) = c.and_then(|c| Some((c, c.accessibility.as_ref()?))) else {
+        return (None, None);
+    };
+    let block = || Block {
+        rule: c.rule.clone(),
+        reason: a.reason.clone(),
+    };
+    match c.accessibility_kind {
+        AccessibilityKind::ClearWidth => (c.facts.clear_width_m, None),
+        AccessibilityKind::Blocked => (None, Some(block())),
+        _ if a.status == AccessibilityStatus::Blocked => (None, Some(block())),
+        _ => (None, None),
+    }
+}
+
 /// One storey plan with the roles, statuses and coordination of `classification`, each door
 /// with the spaces `boundaries` gives it.
 pub(crate) fn floor_from_plan(
@@ -87,7 +109,6 @@ pub(crate) fn floor_from_plan(
         .iter()
         .map(|c| (c.global_id.as_str(), c))
         .collect();
-    let required = classification.profile.min_clearance_width();
     let mut floor = Floor {
         name: plan
             .storey_name
@@ -154,29 +175,29 @@ pub(crate) fn floor_from_plan(
             continue;
         };
         let c = by_guid.get(door.global_id.as_str()).copied();
-        let access = c.and_then(|c| c.accessibility.as_ref());
+        let (classified_width_m, blocked) = door_facts(c);
         floor.doors.push(FloorDoor {
             id: door.global_id.clone(),
             name: door.name.clone(),
             ring,
             center: door.center,
             clear_width_m: door.clear_width_m,
-            status: access.map_or(AccessibilityStatus::PendingValidation, |a| a.status),
-            min_clearance_width_m: access.map_or(required, |a| a.min_clearance_width_m),
+            classified_width_m,
+            blocked,
             roles: roles(c),
             spaces: boundaries.get(&door.global_id).cloned(),
             doorless: false,
             terrain: false,
         });
     }
-    // Doorways (openings no door fills): open whatever the model says, as wide as they are.
+    // Doorways (openings no door fills): open whatever the model says, classified by their own
+    // width (unknown unless a positive number).
     for opening in &plan.openings {
         let Some(ring) = opening.passage().map(|r| r.outer) else {
             continue;
         };
         let c = by_guid.get(opening.global_id.as_str()).copied();
-        let (status, _) =
-            poinav_nav::building::width_status(opening.clear_width_m, &classification.profile);
+        let w = opening.clear_width_m;
         floor.doors.push(FloorDoor {
             id: opening.global_id.clone(),
             name: Some(
@@ -187,9 +208,9 @@ pub(crate) fn floor_from_plan(
             ),
             ring,
             center: opening.center,
-            clear_width_m: opening.clear_width_m,
-            status,
-            min_clearance_width_m: required,
+            clear_width_m: w,
+            classified_width_m: (w.is_finite() && w > 0.0).then_some(w),
+            blocked: None,
             roles: roles(c),
             spaces: boundaries.get(&opening.global_id).cloned(),
             doorless: true,

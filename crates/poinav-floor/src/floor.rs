@@ -1,10 +1,12 @@
-//! `Floor`: one storey as plain 2D data (metres, world XY) tagged with GlobalIds, classes and
-//! POI roles. Navigation and simulation read this, never IFC.
+//! `Floor`: one storey as plain 2D data (metres, world XY) tagged with GlobalIds, classes, POI
+//! roles and the profile-free facts door statuses are computed from
+//! ([`crate::door_status`]). Navigation and simulation read this, never IFC.
 
 use glam::DVec2;
-use poinav_roles::{AccessibilityStatus, CoordinationProtocol, Role};
+use poinav_roles::{CoordinationProtocol, Role};
 use serde::{Deserialize, Serialize};
 
+use crate::door_status::Block;
 use crate::polygon::PassageFrame;
 
 /// What an obstacle is, for maps and sensors.
@@ -51,12 +53,17 @@ pub struct FloorDoor {
     pub ring: Vec<DVec2>,
     /// Centre of the passage.
     pub center: DVec2,
-    /// Clear width in metres.
+    /// Clear width in metres, geometric: the passage's in plan.
     pub clear_width_m: f64,
-    /// AccessibilityStatus for the profile the floor was built for.
-    pub status: AccessibilityStatus,
-    /// Required clear width of that profile (MinClearanceWidth).
-    pub min_clearance_width_m: f64,
+    /// The clear width the classification's clear-width rule read from the model (in IFC:
+    /// OverallWidth less the linings, else OverallWidth, else the opening's footprint; a
+    /// doorway's own width), distinct from the geometric [`FloorDoor::clear_width_m`]; `None`
+    /// when it read none or no such rule classified the door (its status is then unknown).
+    #[serde(default)]
+    pub classified_width_m: Option<f64>,
+    /// The rule that blocks the door for every profile, and why; `None` when none does.
+    #[serde(default)]
+    pub blocked: Option<Block>,
     /// POI roles (A-2, and B-2 when narrow).
     pub roles: Vec<Role>,
     /// The ids ([`FloorZone::id`]) of the spaces the door bounds, when the model says so (in

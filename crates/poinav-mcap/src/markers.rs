@@ -8,8 +8,9 @@
 use std::collections::BTreeMap;
 
 use glam::DVec2;
+use poinav_nav::door_status::classified_status;
 use poinav_nav::{Floor, ObstacleKind};
-use poinav_roles::Role;
+use poinav_roles::{RobotProfile, Role};
 
 use crate::msgs::{Marker, MarkerKind};
 
@@ -51,9 +52,13 @@ fn labels(roles: &[Role]) -> String {
         .join(" ")
 }
 
-/// The markers of `floor` with door statuses `status` (by GlobalId; doors not in it keep the
-/// floor's).
-pub fn floor_markers(floor: &Floor, status: &BTreeMap<String, String>) -> Vec<Marker> {
+/// The markers of `floor` with door statuses `status` (by GlobalId; doors not in it have the
+/// classification's status for `profile`, `poinav_nav::door_status::classified_status`).
+pub fn floor_markers(
+    floor: &Floor,
+    profile: &RobotProfile,
+    status: &BTreeMap<String, String>,
+) -> Vec<Marker> {
     let mut out = Vec::new();
     let kinds = [
         (ObstacleKind::Structure, "walls", [0.25, 0.25, 0.25, 1.0]),
@@ -131,7 +136,7 @@ pub fn floor_markers(floor: &Floor, status: &BTreeMap<String, String>) -> Vec<Ma
         let s = status
             .get(&d.id)
             .cloned()
-            .unwrap_or_else(|| d.status.label().to_string());
+            .unwrap_or_else(|| classified_status(d, profile).0.label().to_string());
         out.push(Marker {
             ns: "doors".into(),
             id: i as i32,

@@ -12,8 +12,9 @@ use glam::DVec2;
 use poinav_roles::{AccessibilityStatus, RobotProfile, Role};
 use serde::Serialize;
 
-use crate::building::{door_status, passable, Building};
+use crate::building::{passable, Building};
 use crate::door_frame::DoorFrame;
+use crate::door_status::door_status;
 use crate::floor::Floor;
 use crate::grid::NavGrid;
 use crate::level::Entrance;

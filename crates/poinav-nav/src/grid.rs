@@ -15,8 +15,9 @@ use poinav_roles::{AccessibilityStatus, RobotProfile};
 use serde::Serialize;
 
 use crate::bounds::{self, GaveUp, Stage, StageBounds};
-use crate::building::{door_status, passable};
+use crate::building::passable;
 use crate::door_frame::DoorFrame;
+use crate::door_status::door_status;
 use crate::floor::{Floor, ObstacleKind};
 use crate::polygon::{self, PassageFrame};
 use crate::zone_index::ZoneIndex;

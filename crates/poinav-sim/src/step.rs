@@ -60,6 +60,9 @@ pub struct SimOptions {
     pub cell_m: f64,
     /// How the POI database starts.
     pub start: Start,
+    /// The profile the POI database's Pset_RobotAccessibility values are for: the enrichment's
+    /// (a scenario's `[building] profile`), not necessarily any robot's.
+    pub poi_profile: RobotProfile,
     /// Behaviour constants.
     pub behaviour: Behaviour,
     /// Keep a record per step and robot.
@@ -72,6 +75,7 @@ impl Default for SimOptions {
             dt: DT,
             cell_m: 1.0,
             start: Start::Keep,
+            poi_profile: RobotProfile::paper(),
             behaviour: Behaviour::default(),
             record: true,
         }
@@ -320,7 +324,7 @@ impl<'f> Sim<'f> {
             .fold(0.0, f64::max);
         let slack = 2.0 * max_speed * opts.dt + 0.1;
         let mut world = World::new(floor, opts.cell_m, slack);
-        let db = PoiDb::new(floor, opts.start);
+        let db = PoiDb::new(floor, opts.start, &opts.poi_profile);
         let mut robots = Vec::new();
         let mut ctrls = Vec::new();
         for s in setups {

@@ -66,6 +66,7 @@ fn write_mcap(scenario: &Scenario, run: &VariantRun, path: &Path) -> anyhow::Res
     let map = poinav_mcap::storey_map(run.building.floor(), &profile, &options)?;
     let scene = poinav_mcap::Scene {
         floor: run.building.floor(),
+        profile: &profile,
         map: &map,
         dt: scenario.dt,
     };
