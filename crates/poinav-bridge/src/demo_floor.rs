@@ -80,7 +80,7 @@ pub fn demo_floor(
         let gid = id("IfcWall", name)?;
         let c = by_gid.get(gid.as_str()).copied();
         obstacles.push(FloorObstacle {
-            id: gid,
+            id: gid.into(),
             class: "IfcWall".into(),
             kind: ObstacleKind::Structure,
             rings,
@@ -110,7 +110,7 @@ pub fn demo_floor(
             let clear = c.and_then(|c| c.facts.clear_width_m).unwrap_or(w);
             let (classified_width_m, blocked) = door_facts(c);
             doors.push(FloorDoor {
-                id: gid,
+                id: gid.into(),
                 name: Some(room.door.name.clone()),
                 ring: rect(cx - w / 2.0, y0, cx + w / 2.0, y1),
                 center: DVec2::new(cx, (y0 + y1) / 2.0),
@@ -167,7 +167,7 @@ pub fn demo_floor(
         let gid = id("IfcSpace", &name)?;
         let c = by_gid.get(gid.as_str()).copied();
         zones.push(FloorZone {
-            id: gid,
+            id: gid.into(),
             name: Some(name.clone()),
             long_name: Some(name),
             ring: rect(min[0], min[1], max[0], max[1]),

@@ -9,7 +9,7 @@ use std::collections::{BTreeMap, HashMap};
 use poinav_geom::{FloorPlan, PlanItemKind, PlanSource};
 use poinav_ifc::Model;
 use poinav_nav::door_status::Block;
-use poinav_nav::{Floor, FloorDoor, FloorObstacle, FloorZone, ObstacleKind};
+use poinav_nav::{ElementId, Floor, FloorDoor, FloorObstacle, FloorZone, ObstacleKind};
 use poinav_poi::{AccessibilityKind, AccessibilityStatus, Classification, Classified, Role};
 
 use crate::error::BridgeError;
@@ -102,7 +102,7 @@ pub(crate) fn door_facts(c: Option<&Classified>) -> (Option<f64>, Option<Block>)
 pub(crate) fn floor_from_plan(
     plan: &FloorPlan,
     classification: &Classification,
-    boundaries: &BTreeMap<String, Vec<String>>,
+    boundaries: &BTreeMap<String, Vec<ElementId>>,
 ) -> Floor {
     let by_guid: HashMap<&str, &Classified> = classification
         .elements
@@ -143,7 +143,7 @@ pub(crate) fn floor_from_plan(
             PlanItemKind::Space => {
                 for region in &item.regions {
                     floor.zones.push(FloorZone {
-                        id: item.global_id.clone(),
+                        id: item.global_id.as_str().into(),
                         name: item.name.clone(),
                         long_name: item.long_name.clone(),
                         ring: region.outer.clone(),
@@ -162,7 +162,7 @@ pub(crate) fn floor_from_plan(
         let rings = rings();
         if !rings.is_empty() {
             floor.obstacles.push(FloorObstacle {
-                id: item.global_id.clone(),
+                id: item.global_id.as_str().into(),
                 class: item.class.clone(),
                 kind,
                 rings,
@@ -177,7 +177,7 @@ pub(crate) fn floor_from_plan(
         let c = by_guid.get(door.global_id.as_str()).copied();
         let (classified_width_m, blocked) = door_facts(c);
         floor.doors.push(FloorDoor {
-            id: door.global_id.clone(),
+            id: door.global_id.as_str().into(),
             name: door.name.clone(),
             ring,
             center: door.center,
@@ -199,7 +199,7 @@ pub(crate) fn floor_from_plan(
         let c = by_guid.get(opening.global_id.as_str()).copied();
         let w = opening.clear_width_m;
         floor.doors.push(FloorDoor {
-            id: opening.global_id.clone(),
+            id: opening.global_id.as_str().into(),
             name: Some(
                 opening
                     .name
@@ -222,8 +222,8 @@ pub(crate) fn floor_from_plan(
 
 /// Per door GlobalId, the GlobalIds of the spaces its `IfcRelSpaceBoundary`s bound (sorted,
 /// each once); doors without space boundaries are absent.
-pub(crate) fn door_space_boundaries(model: &Model) -> BTreeMap<String, Vec<String>> {
-    let mut out: BTreeMap<String, Vec<String>> = BTreeMap::new();
+pub(crate) fn door_space_boundaries(model: &Model) -> BTreeMap<String, Vec<ElementId>> {
+    let mut out: BTreeMap<String, Vec<ElementId>> = BTreeMap::new();
     for rel in model.instances_of("IfcRelSpaceBoundary") {
         let (Some(element), Some(space)) = (
             rel.get_ref("RelatedBuildingElement"),
@@ -240,6 +240,7 @@ pub(crate) fn door_space_boundaries(model: &Model) -> BTreeMap<String, Vec<Strin
             continue;
         };
         let spaces = out.entry(door).or_default();
+        let space = ElementId::from(space);
         if let Err(at) = spaces.binary_search(&space) {
             spaces.insert(at, space);
         }

@@ -9,6 +9,7 @@ use poinav_roles::{
 use serde::{Deserialize, Serialize};
 
 use crate::floor::Floor;
+use crate::id::ElementId;
 use crate::level::FloorLevel;
 
 /// Every storey and what connects them.
@@ -117,7 +118,7 @@ pub struct Landing {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct VerticalConnection {
     /// GlobalId (or a made-up id).
-    pub id: String,
+    pub id: ElementId,
     /// Name.
     pub name: Option<String>,
     /// Kind.

@@ -7,6 +7,7 @@ use poinav_roles::{CoordinationProtocol, Role};
 use serde::{Deserialize, Serialize};
 
 use crate::door_status::Block;
+use crate::id::ElementId;
 use crate::polygon::PassageFrame;
 
 /// What an obstacle is, for maps and sensors.
@@ -31,7 +32,7 @@ pub enum ObstacleKind {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct FloorObstacle {
     /// GlobalId of the IFC element (or a made-up id for hand-built floors).
-    pub id: String,
+    pub id: ElementId,
     /// IFC class.
     pub class: String,
     /// Kind.
@@ -46,7 +47,7 @@ pub struct FloorObstacle {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct FloorDoor {
     /// GlobalId.
-    pub id: String,
+    pub id: ElementId,
     /// Name.
     pub name: Option<String>,
     /// The passage region (the opening's footprint), world metres.
@@ -70,7 +71,7 @@ pub struct FloorDoor {
     /// IFC: `IfcRelSpaceBoundary`): one for an entrance, two for an interior door. `None`:
     /// unknown, the sides come from geometry alone (see `poinav_nav::graph::door_zones`).
     #[serde(default)]
-    pub spaces: Option<Vec<String>>,
+    pub spaces: Option<Vec<ElementId>>,
     /// True for an opening without a door (a doorway; in IFC an `IfcOpeningElement` nothing
     /// fills): nothing opens or closes there, only its width decides whether a robot fits.
     #[serde(default)]
@@ -87,7 +88,7 @@ pub struct FloorDoor {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct FloorZone {
     /// GlobalId.
-    pub id: String,
+    pub id: ElementId,
     /// Name.
     pub name: Option<String>,
     /// LongName.

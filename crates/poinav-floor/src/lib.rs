@@ -8,6 +8,7 @@
 //!   ([`VerticalConnection`]); connection statuses for any profile.
 //! - [`door_status`]: a door's status for any profile from its profile-free facts (the width
 //!   the classification read, the rule that blocks it, [`Block`], its width in plan).
+//! - [`id`]: [`ElementId`], the id of an element (its GlobalId), serialised as the plain string.
 //! - [`index`]: typed indices into a floor's zones and doors ([`ZoneIdx`], [`DoorIdx`]), with
 //!   `Option` for none.
 //! - [`level`]: each storey's walking level and which storeys are at ground level.
@@ -17,6 +18,7 @@
 pub mod building;
 pub mod door_status;
 pub mod floor;
+pub mod id;
 pub mod index;
 pub mod level;
 pub mod polygon;
@@ -24,5 +26,6 @@ pub mod polygon;
 pub use building::{Building, ConnectionKind, Landing, VerticalConnection};
 pub use door_status::{classified_status, door_status, Block};
 pub use floor::{Floor, FloorDoor, FloorObstacle, FloorZone, ObstacleKind};
+pub use id::ElementId;
 pub use index::{DoorIdx, ZoneIdx};
 pub use level::{Entrance, FloorLevel, LevelSource};

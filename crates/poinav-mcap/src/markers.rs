@@ -109,7 +109,7 @@ pub fn floor_markers(
             .name
             .clone()
             .or_else(|| z.long_name.clone())
-            .unwrap_or_else(|| z.id.clone());
+            .unwrap_or_else(|| z.id.to_string());
         out.push(Marker {
             ns: "zones".into(),
             id: i as i32,
@@ -134,7 +134,7 @@ pub fn floor_markers(
     }
     for (i, d) in floor.doors.iter().enumerate() {
         let s = status
-            .get(&d.id)
+            .get(d.id.as_str())
             .cloned()
             .unwrap_or_else(|| classified_status(d, profile).0.label().to_string());
         out.push(Marker {

@@ -20,6 +20,7 @@ use crate::grid::NavGrid;
 use crate::level::Entrance;
 use crate::polygon;
 use crate::zone_index::ZoneIndex;
+use poinav_floor::ElementId;
 
 /// What a node stands for.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -46,7 +47,7 @@ pub struct Node {
     /// `Building::connections`).
     pub index: usize,
     /// GlobalId of the element.
-    pub element: String,
+    pub element: ElementId,
     /// Name (zone Name, else LongName; door name; connection name).
     pub name: Option<String>,
     /// Position: an interior point of the zone, the door's passage centre, the landing point.

@@ -394,7 +394,7 @@ impl OccupancyGrid {
         let mut note = |element: &str, class: &str, stage: Stage, bound: String, outcome: &str| {
             gave_up.push(GaveUp {
                 floor: floor.name.clone(),
-                element: element.to_string(),
+                element: element.into(),
                 class: class.to_string(),
                 stage,
                 bound,
@@ -1099,7 +1099,7 @@ mod tests {
             .enumerate()
         {
             floor.obstacles.push(FloorObstacle {
-                id: format!("o{i}"),
+                id: format!("o{i}").into(),
                 class: "IfcColumn".into(),
                 kind: ObstacleKind::Structure,
                 rings: vec![rect(*x, *y, x + 0.1, y + 0.15)],

@@ -699,7 +699,7 @@ impl<'f> Sim<'f> {
                             t,
                             robot: robot.name.clone(),
                             kind: EventKind::Arrived {
-                                zone: zr.id.clone(),
+                                zone: zr.id.to_string(),
                                 name: zr.name.clone(),
                             },
                         });
@@ -886,7 +886,7 @@ impl<'f> Sim<'f> {
                 let (with, class) = match *o {
                     Owner::Obstacle(k) => {
                         let ob = &self.floor.obstacles[k as usize];
-                        (ob.id.clone(), ob.class.clone())
+                        (ob.id.to_string(), ob.class.clone())
                     }
                     Owner::Robot(j) => (
                         self.robots[j as usize].global_id.clone(),
@@ -916,13 +916,13 @@ impl<'f> Sim<'f> {
         Names {
             robots: self.robots.iter().map(|r| r.name.clone()).collect(),
             robot_ids: self.robots.iter().map(|r| r.global_id.clone()).collect(),
-            obstacles: f.obstacles.iter().map(|o| o.id.clone()).collect(),
+            obstacles: f.obstacles.iter().map(|o| o.id.to_string()).collect(),
             obstacle_classes: f.obstacles.iter().map(|o| o.class.clone()).collect(),
-            doors: f.doors.iter().map(|d| d.id.clone()).collect(),
+            doors: f.doors.iter().map(|d| d.id.to_string()).collect(),
             zones: f
                 .zones
                 .iter()
-                .map(|z| z.name.clone().unwrap_or_else(|| z.id.clone()))
+                .map(|z| z.name.clone().unwrap_or_else(|| z.id.to_string()))
                 .collect(),
         }
     }

@@ -319,7 +319,7 @@ pub fn office_floor() -> Floor {
                     band.y1 - 1.0
                 };
                 obstacles.push(FloorObstacle {
-                    id: format!("desk-{number}"),
+                    id: format!("desk-{number}").into(),
                     class: "IfcFurniture".into(),
                     kind: ObstacleKind::Furniture,
                     rings: vec![rect(x0 + 0.3, far, x0 + 1.7, far + 0.7)],
