@@ -247,3 +247,104 @@ pub(crate) fn door_space_boundaries(model: &Model) -> BTreeMap<String, Vec<Eleme
     }
     out
 }
+
+#[cfg(test)]
+mod tests {
+    use poinav_ifc::EntityId;
+    use poinav_nav::door_status::{classified_status, door_status};
+    use poinav_poi::{
+        Accessibility, AccessibilityKind, AccessibilityStatus, Category, Facts, PoiType,
+        RobotProfile, ValidationMethod,
+    };
+
+    use super::*;
+
+    /// A door classified by `rule` of `kind` with `status` (and `reason`), its facts reading
+    /// a clear width of `width`.
+    fn classified(
+        rule: &str,
+        kind: AccessibilityKind,
+        status: Option<(AccessibilityStatus, &str)>,
+        width: Option<f64>,
+    ) -> Classified {
+        Classified {
+            id: EntityId(7),
+            global_id: "1Door000000000000000007".into(),
+            class: "IfcDoor".into(),
+            name: Some("D7".into()),
+            storey: None,
+            rule: rule.into(),
+            category: Category::Structural,
+            poi_type: PoiType::TransitionElement,
+            primary: vec![Role::Transition],
+            conditional: vec![],
+            accessibility_kind: kind,
+            accessibility: status.map(|(status, reason)| Accessibility {
+                min_clearance_width_m: 0.9,
+                min_clearance_height_m: 2.0,
+                status,
+                method: ValidationMethod::GeometricAnalysis,
+                reason: reason.into(),
+            }),
+            coordination: None,
+            facts: Facts {
+                clear_width_m: width,
+                ..Facts::default()
+            },
+        }
+    }
+
+    fn door(facts: (Option<f64>, Option<Block>)) -> FloorDoor {
+        FloorDoor {
+            id: "1Door000000000000000007".into(),
+            name: None,
+            ring: vec![],
+            center: glam::DVec2::ZERO,
+            clear_width_m: 1.0,
+            classified_width_m: facts.0,
+            blocked: facts.1,
+            roles: vec![],
+            spaces: None,
+            doorless: false,
+            terrain: false,
+        }
+    }
+
+    #[test]
+    fn door_facts_are_what_the_rule_judged() {
+        use AccessibilityKind as K;
+        use AccessibilityStatus::*;
+        let paper = RobotProfile::paper();
+        // The clear-width rule: the width it read, nothing blocks.
+        let c = classified("R2-door", K::ClearWidth, Some((Restricted, "")), Some(0.8));
+        assert_eq!(door_facts(Some(&c)), (Some(0.8), None));
+        assert_eq!(
+            door_status(&door(door_facts(Some(&c))), &paper).0,
+            Restricted
+        );
+        // A blocking rule: its id and reason, whatever the width.
+        let why = "IfcDoor is not passable by a ground robot";
+        let c = classified("R-locked", K::Blocked, Some((Blocked, why)), Some(1.2));
+        let block = Block {
+            rule: "R-locked".into(),
+            reason: why.into(),
+        };
+        assert_eq!(door_facts(Some(&c)), (None, Some(block.clone())));
+        assert_eq!(
+            classified_status(&door((None, Some(block))), &paper),
+            (Blocked, why.into())
+        );
+        // No accessibility, or no classification: unknown.
+        let c = classified("R1", K::None, None, Some(1.2));
+        assert_eq!(door_facts(Some(&c)), (None, None));
+        assert_eq!(door_facts(None), (None, None));
+        // A stairs rule on a door: blocked by it when it blocked, else unknown.
+        let c = classified("R-step", K::Stairs, Some((Blocked, "stairs")), Some(1.2));
+        assert_eq!(
+            door_facts(Some(&c)).1.map(|b| b.rule),
+            Some("R-step".into())
+        );
+        let c = classified("R-step", K::Stairs, Some((FullAccess, "climbs")), Some(1.2));
+        assert_eq!(door_facts(Some(&c)), (None, None));
+    }
+}
