@@ -12,7 +12,7 @@ use poinav_nav::{
     audit, AuditOptions, AuditReport, Building, Floor, FloorDoor, FloorObstacle, FloorZone,
     NavOptions, ObstacleKind,
 };
-use poinav_poi::{AccessibilityStatus, RobotProfile};
+use poinav_poi::RobotProfile;
 
 /// A 22-character GlobalId-like id.
 fn gid(tag: &str) -> String {
@@ -21,13 +21,13 @@ fn gid(tag: &str) -> String {
 
 fn door(tag: &str, x: f64, width: f64) -> FloorDoor {
     FloorDoor {
-        id: gid(tag),
+        id: gid(tag).into(),
         name: Some(tag.into()),
         ring: rect(x, 2.0 - width / 2.0, x + 0.2, 2.0 + width / 2.0),
         center: DVec2::new(x + 0.1, 2.0),
         clear_width_m: width,
-        status: AccessibilityStatus::FullAccess,
-        min_clearance_width_m: 0.9,
+        classified_width_m: Some(width),
+        blocked: None,
         roles: vec![],
         spaces: None,
         doorless: false,
@@ -37,7 +37,7 @@ fn door(tag: &str, x: f64, width: f64) -> FloorDoor {
 
 fn building() -> Building {
     let zone = |tag: &str, x0: f64, x1: f64| FloorZone {
-        id: gid(tag),
+        id: gid(tag).into(),
         name: Some(tag.into()),
         long_name: None,
         ring: rect(x0, 0.0, x1, 4.0),
@@ -45,7 +45,7 @@ fn building() -> Building {
         coordination: None,
     };
     let wall = |tag: &str, rings| FloorObstacle {
-        id: gid(tag),
+        id: gid(tag).into(),
         class: "IfcWall".into(),
         kind: ObstacleKind::Structure,
         rings,

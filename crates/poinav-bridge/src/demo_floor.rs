@@ -11,11 +11,11 @@ use poinav_author::DemoBuilding;
 use poinav_ifc::{units, Model};
 use poinav_nav::polygon::rect;
 use poinav_nav::{Floor, FloorDoor, FloorObstacle, FloorZone, ObstacleKind};
-use poinav_poi::{AccessibilityStatus, Classification, Classified};
+use poinav_poi::{Classification, Classified};
 use poinav_sim::scenario::DemoParams;
 
 use crate::error::BridgeError;
-use crate::ifc_floor::roles;
+use crate::ifc_floor::{door_facts, roles};
 
 /// The test building `params` describe (unset options keep their defaults).
 pub fn demo_spec(params: &DemoParams) -> DemoBuilding {
@@ -80,7 +80,7 @@ pub fn demo_floor(
         let gid = id("IfcWall", name)?;
         let c = by_gid.get(gid.as_str()).copied();
         obstacles.push(FloorObstacle {
-            id: gid,
+            id: gid.into(),
             class: "IfcWall".into(),
             kind: ObstacleKind::Structure,
             rings,
@@ -107,19 +107,16 @@ pub fn demo_floor(
             gaps.push((cx - w / 2.0, cx + w / 2.0));
             let gid = id("IfcDoor", &room.door.name)?;
             let c = by_gid.get(gid.as_str()).copied();
-            let access = c.and_then(|c| c.accessibility.as_ref());
             let clear = c.and_then(|c| c.facts.clear_width_m).unwrap_or(w);
+            let (classified_width_m, blocked) = door_facts(c);
             doors.push(FloorDoor {
-                id: gid,
+                id: gid.into(),
                 name: Some(room.door.name.clone()),
                 ring: rect(cx - w / 2.0, y0, cx + w / 2.0, y1),
                 center: DVec2::new(cx, (y0 + y1) / 2.0),
                 clear_width_m: clear,
-                status: access.map_or(AccessibilityStatus::PendingValidation, |a| a.status),
-                min_clearance_width_m: access
-                    .map_or(classification.profile.min_clearance_width(), |a| {
-                        a.min_clearance_width_m
-                    }),
+                classified_width_m,
+                blocked,
                 roles: roles(c),
                 spaces: None,
                 doorless: false,
@@ -170,7 +167,7 @@ pub fn demo_floor(
         let gid = id("IfcSpace", &name)?;
         let c = by_gid.get(gid.as_str()).copied();
         zones.push(FloorZone {
-            id: gid,
+            id: gid.into(),
             name: Some(name.clone()),
             long_name: Some(name),
             ring: rect(min[0], min[1], max[0], max[1]),

@@ -186,7 +186,7 @@ fn stairs_and_ramps(
                         out.shadows.push((
                             l.floor,
                             FloorObstacle {
-                                id: g.id.clone(),
+                                id: g.id.as_str().into(),
                                 class: g.class.clone(),
                                 kind: ObstacleKind::Transition,
                                 rings: rings.clone(),
@@ -334,7 +334,7 @@ fn stair_or_ramp(
     let slope = (g.kind == ConnectionKind::Ramp && run > 0.0)
         .then(|| ((e1 - e0) / run).atan().to_degrees());
     Ok(VerticalConnection {
-        id: g.id.clone(),
+        id: g.id.as_str().into(),
         name: g.name.clone(),
         kind: g.kind,
         landings,
@@ -661,7 +661,7 @@ fn lifts(
             continue;
         }
         out.connections.push(VerticalConnection {
-            id: first.id.clone(),
+            id: first.id.as_str().into(),
             name: first.name.clone(),
             kind: ConnectionKind::Lift,
             landings,
@@ -776,7 +776,7 @@ mod tests {
                 name: format!("L{i}"),
                 elevation_m: e,
                 zones: vec![poinav_nav::FloorZone {
-                    id: format!("z{i}"),
+                    id: format!("z{i}").into(),
                     name: None,
                     long_name: None,
                     ring: vec![

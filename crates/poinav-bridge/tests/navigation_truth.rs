@@ -6,7 +6,8 @@
 //! reachable one at its landings), entrances are on the building's outside at ground level
 //! (above it only onto the terrain, see `terrain_entrances.rs`), stairs and ramps connect
 //! storeys for a legged robot with landings free in the grid and in a zone, and every cell
-//! over a hole in a floor slab is occupied (or keepout) in the Nav2 map.
+//! over a hole in a floor slab is occupied (or keepout) in the Nav2 map; and every door's facts
+//! give back, for the profile it was classified for, the classification's own verdict.
 
 use std::path::{Path, PathBuf};
 
@@ -14,13 +15,14 @@ use glam::DVec2;
 use poinav_bridge::DroppedKind;
 use poinav_geom::{floor_plans, PlanOptions, PlanSource};
 use poinav_ifc::Model;
+use poinav_nav::door_status::classified_status;
 use poinav_nav::graph::{zone_at, NodeKind};
 use poinav_nav::DoorFrame;
 use poinav_nav::{
     audit::audit_profile, Building, CellState, ConnectionKind, Entrance, LevelSource, NavOptions,
     Navigator,
 };
-use poinav_poi::{classify, Locomotion, RobotProfile, RuleSet};
+use poinav_poi::{classify, AccessibilityStatus, Locomotion, RobotProfile, RuleSet};
 
 fn legged() -> RobotProfile {
     let mut p = RobotProfile::paper();
@@ -36,12 +38,33 @@ fn house(dir: &Path) -> PathBuf {
     out
 }
 
-/// The building of `file` for `profile`, and the stairs and ramps (not lifts) left out.
+/// The building of `file` for `profile`, and the stairs and ramps (not lifts) left out. Checks
+/// that each door's profile-free facts give back the classification's verdict for `profile`
+/// (a doorway's: the clear-width rule on its own width).
 fn building(file: &Path, profile: &RobotProfile) -> (Model, Building, Vec<String>) {
     let model = Model::open(file).unwrap();
     let c = classify(&model, &RuleSet::defaults(), profile);
     let made = poinav_bridge::building(&model, &c, &poinav_bridge::Stages::of(&model));
     let (b, dropped) = (made.building, made.dropped);
+    for d in b.floors.iter().flat_map(|f| &f.doors) {
+        let verdict = match d.doorless {
+            true => poinav_nav::building::width_status(d.clear_width_m, profile).0,
+            false => c
+                .elements
+                .iter()
+                .find(|e| d.id == e.global_id)
+                .and_then(|e| e.accessibility.as_ref())
+                .map_or(AccessibilityStatus::PendingValidation, |a| a.status),
+        };
+        assert_eq!(
+            classified_status(d, profile).0,
+            verdict,
+            "{}: door {} {:?}",
+            file.display(),
+            d.id,
+            d.name
+        );
+    }
     let dropped = dropped
         .iter()
         .filter(|d| d.kind != DroppedKind::Connection(ConnectionKind::Lift))

@@ -23,8 +23,8 @@ use poinav_geom::{ElementMesh, Mesh};
 use poinav_ifc::spatial::Storey;
 use poinav_ifc::EntityId;
 use poinav_poi::{
-    Accessibility, AccessibilityStatus, Category, Classification, Classified, Facts, PoiType,
-    RobotProfile, Role, ValidationMethod,
+    Accessibility, AccessibilityKind, AccessibilityStatus, Category, Classification, Classified,
+    Facts, PoiType, RobotProfile, Role, ValidationMethod,
 };
 use serde_json::Value;
 
@@ -189,6 +189,7 @@ fn building() -> Building {
         poi_type: PoiType::TransitionElement,
         primary: vec![Role::Transition],
         conditional: vec![Role::Narrow],
+        accessibility_kind: AccessibilityKind::ClearWidth,
         accessibility: Some(Accessibility {
             min_clearance_width_m: 0.9,
             min_clearance_height_m: 2.0,

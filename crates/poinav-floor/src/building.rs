@@ -1,6 +1,6 @@
 //! A building for navigation: its storeys as [`Floor`]s and the stairs, ramps and lifts that
-//! connect them ([`VerticalConnection`]), plus the AccessibilityStatus of doors and
-//! connections for any robot profile.
+//! connect them ([`VerticalConnection`]), plus the AccessibilityStatus of connections for any
+//! robot profile (doors': [`crate::door_status`]) and the status helpers both share.
 
 use glam::DVec2;
 use poinav_roles::{
@@ -8,7 +8,8 @@ use poinav_roles::{
 };
 use serde::{Deserialize, Serialize};
 
-use crate::floor::{Floor, FloorDoor};
+use crate::floor::Floor;
+use crate::id::ElementId;
 use crate::level::FloorLevel;
 
 /// Every storey and what connects them.
@@ -117,7 +118,7 @@ pub struct Landing {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct VerticalConnection {
     /// GlobalId (or a made-up id).
-    pub id: String,
+    pub id: ElementId,
     /// Name.
     pub name: Option<String>,
     /// Kind.
@@ -215,25 +216,6 @@ pub fn width_status(clear_width_m: f64, profile: &RobotProfile) -> (Accessibilit
     clear_width_status(known, None, profile)
 }
 
-/// AccessibilityStatus of `door` for `profile`, with the reason: the clear-width rule, except
-/// that a status stored for the same profile (same MinClearanceWidth) that is worse than the
-/// width says stands (it may come from more than width), and a door stored as BLOCKED although
-/// wide enough for its own requirement (a window) is BLOCKED for every profile.
-pub fn door_status(door: &FloorDoor, profile: &RobotProfile) -> (AccessibilityStatus, String) {
-    let (by_width, reason) = width_status(door.clear_width_m, profile);
-    let not_by_width = door.status == AccessibilityStatus::Blocked
-        && door.clear_width_m.is_finite()
-        && door.clear_width_m >= door.min_clearance_width_m;
-    let same_profile = (door.min_clearance_width_m - profile.min_clearance_width()).abs() < 1e-9;
-    if not_by_width || (same_profile && worse(door.status, by_width) != by_width) {
-        return (
-            door.status,
-            format!("{} as classified ({reason})", door.status.label()),
-        );
-    }
-    (by_width, reason)
-}
-
 /// True when a robot may pass a transition with this status (`pending_passable` decides
 /// PENDING_VALIDATION).
 pub fn passable(status: AccessibilityStatus, pending_passable: bool) -> bool {
@@ -247,49 +229,22 @@ pub fn passable(status: AccessibilityStatus, pending_passable: bool) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::floor::FloorDoor;
 
-    fn door(width: f64, status: AccessibilityStatus) -> FloorDoor {
+    fn door(width: f64) -> FloorDoor {
         FloorDoor {
             id: "d".into(),
             name: Some("Door".into()),
             ring: vec![],
             center: DVec2::ZERO,
             clear_width_m: width,
-            status,
-            min_clearance_width_m: 0.9,
+            classified_width_m: Some(width),
+            blocked: None,
             roles: vec![],
             spaces: None,
             doorless: false,
             terrain: false,
         }
-    }
-
-    #[test]
-    fn door_status_follows_the_width_rule_per_profile() {
-        let paper = RobotProfile::paper();
-        assert_eq!(
-            door_status(&door(0.8, AccessibilityStatus::Restricted), &paper).0,
-            AccessibilityStatus::Restricted
-        );
-        assert_eq!(
-            door_status(&door(0.6, AccessibilityStatus::Restricted), &paper).0,
-            AccessibilityStatus::Blocked
-        );
-        assert_eq!(
-            door_status(&door(1.0, AccessibilityStatus::PendingValidation), &paper).0,
-            AccessibilityStatus::PendingValidation
-        );
-        // A window: BLOCKED as classified for the same profile.
-        let (s, why) = door_status(&door(1.2, AccessibilityStatus::Blocked), &paper);
-        assert_eq!(s, AccessibilityStatus::Blocked);
-        assert!(why.contains("as classified"), "{why}");
-        let mut small = paper.clone();
-        small.width_m = 0.5;
-        small.min_clearance_width_m = Some(0.6);
-        assert_eq!(
-            door_status(&door(0.6, AccessibilityStatus::Blocked), &small).0,
-            AccessibilityStatus::FullAccess
-        );
     }
 
     #[test]
@@ -318,9 +273,7 @@ mod tests {
         assert!(two.diagnostics()[0]
             .starts_with("nothing to navigate: none of its 2 storeys has spaces"));
         // One door is something: the storey-without-spaces warning instead.
-        two.floors[1]
-            .doors
-            .push(door(1.0, AccessibilityStatus::FullAccess));
+        two.floors[1].doors.push(door(1.0));
         let d = two.diagnostics();
         assert_eq!(d.len(), 1);
         assert!(

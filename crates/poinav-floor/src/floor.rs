@@ -1,10 +1,13 @@
-//! `Floor`: one storey as plain 2D data (metres, world XY) tagged with GlobalIds, classes and
-//! POI roles. Navigation and simulation read this, never IFC.
+//! `Floor`: one storey as plain 2D data (metres, world XY) tagged with GlobalIds, classes, POI
+//! roles and the profile-free facts door statuses are computed from
+//! ([`crate::door_status`]). Navigation and simulation read this, never IFC.
 
 use glam::DVec2;
-use poinav_roles::{AccessibilityStatus, CoordinationProtocol, Role};
+use poinav_roles::{CoordinationProtocol, Role};
 use serde::{Deserialize, Serialize};
 
+use crate::door_status::Block;
+use crate::id::ElementId;
 use crate::polygon::PassageFrame;
 
 /// What an obstacle is, for maps and sensors.
@@ -29,7 +32,7 @@ pub enum ObstacleKind {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct FloorObstacle {
     /// GlobalId of the IFC element (or a made-up id for hand-built floors).
-    pub id: String,
+    pub id: ElementId,
     /// IFC class.
     pub class: String,
     /// Kind.
@@ -44,26 +47,31 @@ pub struct FloorObstacle {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct FloorDoor {
     /// GlobalId.
-    pub id: String,
+    pub id: ElementId,
     /// Name.
     pub name: Option<String>,
     /// The passage region (the opening's footprint), world metres.
     pub ring: Vec<DVec2>,
     /// Centre of the passage.
     pub center: DVec2,
-    /// Clear width in metres.
+    /// Clear width in metres, geometric: the passage's in plan.
     pub clear_width_m: f64,
-    /// AccessibilityStatus for the profile the floor was built for.
-    pub status: AccessibilityStatus,
-    /// Required clear width of that profile (MinClearanceWidth).
-    pub min_clearance_width_m: f64,
+    /// The clear width the classification's clear-width rule read from the model (in IFC:
+    /// OverallWidth less the linings, else OverallWidth, else the opening's footprint; a
+    /// doorway's own width), distinct from the geometric [`FloorDoor::clear_width_m`]; `None`
+    /// when it read none or no such rule classified the door (its status is then unknown).
+    #[serde(default)]
+    pub classified_width_m: Option<f64>,
+    /// The rule that blocks the door for every profile, and why; `None` when none does.
+    #[serde(default)]
+    pub blocked: Option<Block>,
     /// POI roles (A-2, and B-2 when narrow).
     pub roles: Vec<Role>,
     /// The ids ([`FloorZone::id`]) of the spaces the door bounds, when the model says so (in
     /// IFC: `IfcRelSpaceBoundary`): one for an entrance, two for an interior door. `None`:
     /// unknown, the sides come from geometry alone (see `poinav_nav::graph::door_zones`).
     #[serde(default)]
-    pub spaces: Option<Vec<String>>,
+    pub spaces: Option<Vec<ElementId>>,
     /// True for an opening without a door (a doorway; in IFC an `IfcOpeningElement` nothing
     /// fills): nothing opens or closes there, only its width decides whether a robot fits.
     #[serde(default)]
@@ -80,7 +88,7 @@ pub struct FloorDoor {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct FloorZone {
     /// GlobalId.
-    pub id: String,
+    pub id: ElementId,
     /// Name.
     pub name: Option<String>,
     /// LongName.

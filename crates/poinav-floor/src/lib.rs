@@ -5,7 +5,10 @@
 //! - [`floor`]: a [`Floor`] (one storey) of obstacles, doors and zones, tagged with GlobalIds,
 //!   classes and POI roles.
 //! - [`building`]: a [`Building`] is storeys plus stairs, ramps and lifts
-//!   ([`VerticalConnection`]); door and connection statuses for any profile.
+//!   ([`VerticalConnection`]); connection statuses for any profile.
+//! - [`door_status`]: a door's status for any profile from its profile-free facts (the width
+//!   the classification read, the rule that blocks it, [`Block`], its width in plan).
+//! - [`id`]: [`ElementId`], the id of an element (its GlobalId), serialised as the plain string.
 //! - [`index`]: typed indices into a floor's zones and doors ([`ZoneIdx`], [`DoorIdx`]), with
 //!   `Option` for none.
 //! - [`level`]: each storey's walking level and which storeys are at ground level.
@@ -13,12 +16,16 @@
 //!   distances, areas, interior points, passage frames.
 
 pub mod building;
+pub mod door_status;
 pub mod floor;
+pub mod id;
 pub mod index;
 pub mod level;
 pub mod polygon;
 
 pub use building::{Building, ConnectionKind, Landing, VerticalConnection};
+pub use door_status::{classified_status, door_status, Block};
 pub use floor::{Floor, FloorDoor, FloorObstacle, FloorZone, ObstacleKind};
+pub use id::ElementId;
 pub use index::{DoorIdx, ZoneIdx};
 pub use level::{Entrance, FloorLevel, LevelSource};

@@ -9,7 +9,7 @@
 //! # let floor: poinav_nav::Floor = unimplemented!();
 //! let profile = poinav_roles::RobotProfile::paper();
 //! let map = poinav_mcap::storey_map(&floor, &profile, &poinav_nav::Nav2Options::default())?;
-//! let scene = poinav_mcap::Scene { floor: &floor, map: &map, dt: 1.0 / 60.0 };
+//! let scene = poinav_mcap::Scene { floor: &floor, profile: &profile, map: &map, dt: 1.0 / 60.0 };
 //! let summary = poinav_mcap::write_recording(
 //!     std::path::Path::new("out/trace.jsonl"),
 //!     &scene,

@@ -8,8 +8,9 @@
 use std::collections::BTreeMap;
 
 use glam::DVec2;
+use poinav_nav::door_status::classified_status;
 use poinav_nav::{Floor, ObstacleKind};
-use poinav_roles::Role;
+use poinav_roles::{RobotProfile, Role};
 
 use crate::msgs::{Marker, MarkerKind};
 
@@ -51,9 +52,13 @@ fn labels(roles: &[Role]) -> String {
         .join(" ")
 }
 
-/// The markers of `floor` with door statuses `status` (by GlobalId; doors not in it keep the
-/// floor's).
-pub fn floor_markers(floor: &Floor, status: &BTreeMap<String, String>) -> Vec<Marker> {
+/// The markers of `floor` with door statuses `status` (by GlobalId; doors not in it have the
+/// classification's status for `profile`, `poinav_nav::door_status::classified_status`).
+pub fn floor_markers(
+    floor: &Floor,
+    profile: &RobotProfile,
+    status: &BTreeMap<String, String>,
+) -> Vec<Marker> {
     let mut out = Vec::new();
     let kinds = [
         (ObstacleKind::Structure, "walls", [0.25, 0.25, 0.25, 1.0]),
@@ -104,7 +109,7 @@ pub fn floor_markers(floor: &Floor, status: &BTreeMap<String, String>) -> Vec<Ma
             .name
             .clone()
             .or_else(|| z.long_name.clone())
-            .unwrap_or_else(|| z.id.clone());
+            .unwrap_or_else(|| z.id.to_string());
         out.push(Marker {
             ns: "zones".into(),
             id: i as i32,
@@ -129,9 +134,9 @@ pub fn floor_markers(floor: &Floor, status: &BTreeMap<String, String>) -> Vec<Ma
     }
     for (i, d) in floor.doors.iter().enumerate() {
         let s = status
-            .get(&d.id)
+            .get(d.id.as_str())
             .cloned()
-            .unwrap_or_else(|| d.status.label().to_string());
+            .unwrap_or_else(|| classified_status(d, profile).0.label().to_string());
         out.push(Marker {
             ns: "doors".into(),
             id: i as i32,

@@ -17,7 +17,9 @@ use std::io::{BufRead, BufReader, Write};
 use std::path::Path;
 
 use mcap::records::MessageHeader;
+use poinav_nav::door_status::classified_status;
 use poinav_nav::Floor;
+use poinav_roles::RobotProfile;
 use serde::Deserialize;
 use serde_json::Value;
 
@@ -48,6 +50,9 @@ pub const ROS_DISTRO: &str = "jazzy";
 pub struct Scene<'a> {
     /// The storey the robots ran on (markers).
     pub floor: &'a Floor,
+    /// The profile of the run's POI database (the enrichment's): the doors' statuses before
+    /// the run changes them.
+    pub profile: &'a RobotProfile,
     /// Its map (`/map`).
     pub map: &'a StoreyMap,
     /// The simulation's step, seconds.
@@ -321,7 +326,11 @@ fn record<W: Write + std::io::Seek>(
     }
     .encode();
     o.write(map_ch, START_NS, &grid)?;
-    let bytes = msgs::marker_array(START_NS, "map", &floor_markers(scene.floor, &statuses));
+    let bytes = msgs::marker_array(
+        START_NS,
+        "map",
+        &floor_markers(scene.floor, scene.profile, &statuses),
+    );
     o.write(markers_ch, START_NS, &bytes)?;
 
     // Per robot: ROS name, frame, scan and odom channels.
@@ -370,8 +379,11 @@ fn record<W: Write + std::io::Seek>(
             }));
             o.write(tf_ch, stamp, &msgs::tf_message(&tfs))?;
             if s.statuses_changed {
-                let bytes =
-                    msgs::marker_array(stamp, "map", &floor_markers(scene.floor, &statuses));
+                let bytes = msgs::marker_array(
+                    stamp,
+                    "map",
+                    &floor_markers(scene.floor, scene.profile, &statuses),
+                );
                 o.write(markers_ch, stamp, &bytes)?;
             }
             o.summary.steps += 1;
@@ -449,7 +461,7 @@ fn record<W: Write + std::io::Seek>(
             if let Some((Value::String(id), Value::String(to))) = door_status {
                 let now = statuses.get(id).map(String::as_str).or_else(|| {
                     let d = scene.floor.doors.iter().find(|d| &d.id == id)?;
-                    Some(d.status.label())
+                    Some(classified_status(d, scene.profile).0.label())
                 });
                 if now.is_some_and(|now| now != to) {
                     statuses.insert(id.clone(), to.clone());

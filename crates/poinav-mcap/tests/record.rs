@@ -9,7 +9,7 @@ use glam::DVec2;
 use poinav_mcap::{storey_map, write_recording, McapError, Scene, START_NS};
 use poinav_nav::polygon::rect;
 use poinav_nav::{Floor, FloorDoor, FloorObstacle, FloorZone, Nav2Options, ObstacleKind};
-use poinav_roles::{AccessibilityStatus, RobotProfile, Role};
+use poinav_roles::{RobotProfile, Role};
 
 /// A 4 x 3 m room with 0.1 m walls and a 1 m door in the south wall.
 fn floor() -> Floor {
@@ -35,8 +35,8 @@ fn floor() -> Floor {
             ring: rect(1.5, -0.1, 2.5, 0.0),
             center: DVec2::new(2.0, -0.05),
             clear_width_m: 1.0,
-            status: AccessibilityStatus::FullAccess,
-            min_clearance_width_m: 0.9,
+            classified_width_m: Some(1.0),
+            blocked: None,
             roles: vec![Role::Transition],
             spaces: Some(vec!["room".into()]),
             doorless: false,
@@ -60,9 +60,11 @@ const TRACE: &str = r#"{"step":0,"t":0,"robot":"R 1","x":2,"y":1.5,"heading_deg"
 
 fn record(dir: &Path, trace: &str, name: &str) -> Result<Vec<u8>, McapError> {
     let floor = floor();
-    let map = storey_map(&floor, &RobotProfile::paper(), &Nav2Options::default()).unwrap();
+    let profile = RobotProfile::paper();
+    let map = storey_map(&floor, &profile, &Nav2Options::default()).unwrap();
     let scene = Scene {
         floor: &floor,
+        profile: &profile,
         map: &map,
         dt: 1.0 / 60.0,
     };

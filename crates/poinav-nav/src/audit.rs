@@ -20,6 +20,7 @@ use crate::route::{Blocking, NoPlace, Place, Target};
 use crate::space_name::SpaceNames;
 use crate::svg;
 use crate::NavError;
+use poinav_floor::ElementId;
 
 /// How to audit.
 #[derive(Debug, Clone, PartialEq, Default, Serialize)]
@@ -38,7 +39,7 @@ pub struct DoorAudit {
     /// Storey name.
     pub floor_name: String,
     /// GlobalId.
-    pub id: String,
+    pub id: ElementId,
     /// Name.
     pub name: Option<String>,
     /// Clear width, metres.
@@ -72,7 +73,7 @@ pub struct DoorAudit {
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct TransitionAudit {
     /// GlobalId.
-    pub id: String,
+    pub id: ElementId,
     /// Name.
     pub name: Option<String>,
     /// `stair`, `ramp`, `lift`.
@@ -97,7 +98,7 @@ pub struct SpaceAudit {
     /// Storey name.
     pub floor_name: String,
     /// GlobalId.
-    pub id: String,
+    pub id: ElementId,
     /// Name (Name, else LongName).
     pub name: Option<String>,
     /// Reachable from the starts.

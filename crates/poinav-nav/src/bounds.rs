@@ -9,6 +9,7 @@ use serde::Serialize;
 use crate::floor::Floor;
 use crate::graph::SIDE_PROBE_M;
 use crate::polygon;
+use poinav_floor::ElementId;
 
 /// Most vertices one element's rings may have together (100,000). Sectioning keeps a product
 /// to 200,000 mesh edges, and the outline of a real wall, slab, space or door has tens to a
@@ -84,7 +85,7 @@ pub struct GaveUp {
     /// Storey name.
     pub floor: String,
     /// GlobalId.
-    pub element: String,
+    pub element: ElementId,
     /// IFC class (`IfcSpace` for zones, `IfcDoor` or `IfcOpeningElement` for doors).
     pub class: String,
     /// The stage.

@@ -12,13 +12,15 @@ use glam::DVec2;
 use poinav_roles::{AccessibilityStatus, RobotProfile, Role};
 use serde::Serialize;
 
-use crate::building::{door_status, passable, Building};
+use crate::building::{passable, Building};
 use crate::door_frame::DoorFrame;
+use crate::door_status::door_status;
 use crate::floor::Floor;
 use crate::grid::NavGrid;
 use crate::level::Entrance;
 use crate::polygon;
 use crate::zone_index::ZoneIndex;
+use poinav_floor::ElementId;
 
 /// What a node stands for.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -45,7 +47,7 @@ pub struct Node {
     /// `Building::connections`).
     pub index: usize,
     /// GlobalId of the element.
-    pub element: String,
+    pub element: ElementId,
     /// Name (zone Name, else LongName; door name; connection name).
     pub name: Option<String>,
     /// Position: an interior point of the zone, the door's passage centre, the landing point.

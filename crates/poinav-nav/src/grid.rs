@@ -15,8 +15,9 @@ use poinav_roles::{AccessibilityStatus, RobotProfile};
 use serde::Serialize;
 
 use crate::bounds::{self, GaveUp, Stage, StageBounds};
-use crate::building::{door_status, passable};
+use crate::building::passable;
 use crate::door_frame::DoorFrame;
+use crate::door_status::door_status;
 use crate::floor::{Floor, ObstacleKind};
 use crate::polygon::{self, PassageFrame};
 use crate::zone_index::ZoneIndex;
@@ -393,7 +394,7 @@ impl OccupancyGrid {
         let mut note = |element: &str, class: &str, stage: Stage, bound: String, outcome: &str| {
             gave_up.push(GaveUp {
                 floor: floor.name.clone(),
-                element: element.to_string(),
+                element: element.into(),
                 class: class.to_string(),
                 stage,
                 bound,
@@ -1098,7 +1099,7 @@ mod tests {
             .enumerate()
         {
             floor.obstacles.push(FloorObstacle {
-                id: format!("o{i}"),
+                id: format!("o{i}").into(),
                 class: "IfcColumn".into(),
                 kind: ObstacleKind::Structure,
                 rings: vec![rect(*x, *y, x + 0.1, y + 0.15)],

@@ -20,7 +20,7 @@
 //! ```
 //! use glam::DVec2;
 //! use poinav_nav::{Building, Floor, FloorDoor, FloorObstacle, FloorZone, NavOptions, Navigator, ObstacleKind, Place};
-//! use poinav_roles::{AccessibilityStatus, RobotProfile};
+//! use poinav_roles::RobotProfile;
 //!
 //! use poinav_nav::polygon::rect;
 //! let zone = |name: &str, ring| FloorZone {
@@ -44,8 +44,8 @@
 //!         ring: rect(4.0, 1.5, 4.2, 2.5),
 //!         center: DVec2::new(4.1, 2.0),
 //!         clear_width_m: 1.0,
-//!         status: AccessibilityStatus::FullAccess,
-//!         min_clearance_width_m: 0.9,
+//!         classified_width_m: Some(1.0),
+//!         blocked: None,
 //!         roles: vec![],
 //!         spaces: None,
 //!         doorless: false,
@@ -66,6 +66,7 @@ pub mod audit;
 pub mod bounds;
 mod door_frame;
 pub use poinav_floor::building;
+pub use poinav_floor::door_status;
 mod error;
 pub mod extent;
 use poinav_floor::floor;
@@ -94,7 +95,7 @@ pub use grid::{CellState, FurnitureMode, GridOptions, InflationOptions, NavGrid,
 pub use level::{Entrance, FloorLevel, LevelSource};
 pub use nav2::{write_bundle, write_bundle_with_progress, Nav2Options};
 pub use navigator::{NavOptions, Navigator};
-pub use poinav_floor::{DoorIdx, ZoneIdx};
+pub use poinav_floor::{DoorIdx, ElementId, ZoneIdx};
 pub use progress::{Phase, Progress};
 pub use route::{NoPlace, Place, Route, Unreachable};
 pub use space_name::{Ambiguous, SpaceNames, SpaceRef};

@@ -22,6 +22,7 @@ use crate::grid::{NavGrid, NEIGHBOURS};
 use crate::navigator::{FloorNav, Navigator};
 use crate::space_name::SpaceNames;
 use crate::NavError;
+use poinav_floor::ElementId;
 
 /// Where a route starts or ends.
 #[derive(Debug, Clone, PartialEq)]
@@ -110,7 +111,7 @@ pub struct Blocking {
     /// Storey name.
     pub floor: String,
     /// GlobalId.
-    pub element: String,
+    pub element: ElementId,
     /// Name.
     pub name: Option<String>,
     /// `door` or `landing` (stairs, ramps, lifts).
@@ -159,7 +160,7 @@ pub struct PassedDoor {
     /// Storey name.
     pub floor: String,
     /// GlobalId.
-    pub id: String,
+    pub id: ElementId,
     /// Name.
     pub name: Option<String>,
     /// Status for the profile.
@@ -176,7 +177,7 @@ pub struct PassedDoor {
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct PassedConnection {
     /// GlobalId.
-    pub id: String,
+    pub id: ElementId,
     /// Name.
     pub name: Option<String>,
     /// `stair`, `ramp`, `lift`.
@@ -1089,7 +1090,7 @@ impl Navigator<'_> {
                     .name
                     .clone()
                     .or_else(|| zone.long_name.clone())
-                    .unwrap_or_else(|| zone.id.clone());
+                    .unwrap_or_else(|| zone.id.to_string());
                 if zones.last() != Some(&label) {
                     zones.push(label);
                 }

@@ -196,7 +196,7 @@ fn zone_label(z: &crate::floor::FloorZone) -> String {
     z.name
         .clone()
         .or_else(|| z.long_name.clone())
-        .unwrap_or_else(|| z.id.clone())
+        .unwrap_or_else(|| z.id.to_string())
 }
 
 fn roles(roles: &[poinav_roles::Role]) -> Value {
@@ -497,7 +497,7 @@ fn storey_edge(
         "doors": doors.iter().map(|&d| floor.doors[d].id.as_str()).collect::<Vec<_>>(),
         "door_names": doors
             .iter()
-            .map(|&d| floor.doors[d].name.clone().unwrap_or_else(|| floor.doors[d].id.clone()))
+            .map(|&d| floor.doors[d].name.clone().unwrap_or_else(|| floor.doors[d].id.to_string()))
             .collect::<Vec<_>>(),
     });
     GraphEdge {

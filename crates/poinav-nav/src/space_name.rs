@@ -7,6 +7,7 @@ use std::fmt;
 use crate::building::Building;
 use crate::floor::FloorZone;
 use crate::NavError;
+use poinav_floor::ElementId;
 
 /// A space of a [`Building`]: storey index and zone index on it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
@@ -32,7 +33,7 @@ pub struct Candidate {
     /// Storey name.
     pub storey: String,
     /// GlobalId.
-    pub global_id: String,
+    pub global_id: ElementId,
 }
 
 /// A name that fits several spaces.
@@ -152,7 +153,7 @@ impl SpaceNames for Building {
                 }
             }
         }
-        z.id.clone()
+        z.id.to_string()
     }
 
     fn find_storey(&self, name: &str) -> Result<usize, NavError> {

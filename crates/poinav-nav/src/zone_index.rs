@@ -214,7 +214,7 @@ mod tests {
 
     fn zone(ring: Vec<DVec2>) -> FloorZone {
         FloorZone {
-            id: format!("z{}", ring.len()),
+            id: format!("z{}", ring.len()).into(),
             name: None,
             long_name: None,
             ring,

@@ -337,7 +337,7 @@ fn an_open_entrance_has_a_free_apron_outside_and_routes_start_there() {
     // A closed entrance has no apron, and no route comes in from outside.
     let mut closed = floor.clone();
     closed.doors[0].clear_width_m = 0.6;
-    closed.doors[0].status = AccessibilityStatus::Blocked;
+    closed.doors[0].classified_width_m = Some(0.6);
     let building = Building::single(closed);
     let nav = Navigator::new(&building, &profile, &NavOptions::default()).unwrap();
     let err = nav

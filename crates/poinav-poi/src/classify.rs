@@ -34,6 +34,9 @@ pub struct Classified {
     pub primary: Vec<Role>,
     /// POI_ConditionalRoles.
     pub conditional: Vec<Role>,
+    /// How the winning rule decides AccessibilityStatus (what `accessibility` was made from,
+    /// besides the facts and the profile).
+    pub accessibility_kind: AccessibilityKind,
     /// Pset_RobotAccessibility, when the rule asks for it.
     pub accessibility: Option<Accessibility>,
     /// Pset_RobotCoordination, when the rule gives it.
@@ -148,6 +151,7 @@ pub fn classify(model: &Model, rules: &RuleSet, profile: &RobotProfile) -> Class
                 poi_type: rule.poi_type.expect("compiled rules have a type"),
                 primary: rule.roles.clone(),
                 conditional,
+                accessibility_kind: rule.accessibility,
                 accessibility,
                 coordination: rule.coordination.clone(),
                 facts,

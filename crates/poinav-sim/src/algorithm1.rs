@@ -552,7 +552,7 @@ pub fn perceive(
                 env,
                 &robot.name,
                 EventKind::ZoneEntered {
-                    zone: zr.id.clone(),
+                    zone: zr.id.to_string(),
                     name: zr.name.clone(),
                 },
             );

@@ -78,7 +78,7 @@ fn run(e: &Expect, robots: &[&str], steps: &[Vec<StepRecord>], events: &[Event])
         .push(wall("cabinet", rect(3.0, -3.0, 3.5, -2.5)));
     floor.obstacles[3].roles = vec![Role::Avoidance];
     e.check(&floor).unwrap();
-    let db = PoiDb::new(&floor, Start::Keep);
+    let db = PoiDb::new(&floor, Start::Keep, &poinav_roles::RobotProfile::paper());
     let sizes = vec![(0.4, 0.35); robots.len()];
     let mut j = Judge::new(e, 7, &names(robots));
     for s in steps {

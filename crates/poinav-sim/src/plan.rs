@@ -3,7 +3,8 @@
 //! its target zone, and the waypoints that line the robot up with every door it passes.
 
 use glam::DVec2;
-use poinav_nav::building::{door_status, passable};
+use poinav_nav::building::passable;
+use poinav_nav::door_status::door_status;
 use poinav_nav::graph::zone_near;
 use poinav_nav::zone_index::ZoneIndex;
 use poinav_nav::{Building, DoorFrame, DoorIdx, Floor, Topology, ZoneIdx};

@@ -80,7 +80,10 @@ pub fn trajectories(outcome: &Outcome, floor: &Floor) -> String {
     }
     for (i, d) in floor.doors.iter().enumerate() {
         let rec = data.db.get(data.db.index(Element::Door(DoorIdx::new(i))));
-        let status = rec.accessibility.as_ref().map_or(d.status, |a| a.status);
+        let status = rec
+            .accessibility
+            .as_ref()
+            .map_or(AccessibilityStatus::PendingValidation, |a| a.status);
         let fill = match status {
             AccessibilityStatus::FullAccess => "#4caf50",
             AccessibilityStatus::Restricted => "#ff9800",

@@ -5,11 +5,12 @@
 
 use std::collections::BTreeMap;
 
+use poinav_nav::door_status::classified_status;
 use poinav_nav::{DoorIdx, Floor, ObstacleKind, ZoneIdx};
 use poinav_roles::runtime::{self, Observation, RuntimeChange};
 use poinav_roles::{
     Accessibility, AccessibilityStatus, AppliesTo, Category, Coordination, PoiRecord, PoiType,
-    Role, ValidationMethod,
+    RobotProfile, Role, ValidationMethod,
 };
 
 /// A set of roles as bits (index in `Role::ALL`).
@@ -67,7 +68,8 @@ pub enum Element {
 /// How the database starts.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Start {
-    /// With the floor's roles and statuses (the enrichment's).
+    /// With the floor's roles and the enrichment's statuses (the classification's verdict on
+    /// each door for the database's profile, [`classified_status`]).
     #[default]
     Keep,
     /// Without conditional roles, doors PENDING_VALIDATION: the sensors decide.
@@ -118,8 +120,9 @@ fn record(
 }
 
 impl PoiDb {
-    /// Records for every obstacle, door and zone of `floor`, in that order.
-    pub fn new(floor: &Floor, start: Start) -> PoiDb {
+    /// Records for every obstacle, door and zone of `floor`, in that order; the doors'
+    /// Pset_RobotAccessibility values are for `profile` (the enrichment's).
+    pub fn new(floor: &Floor, start: Start, profile: &RobotProfile) -> PoiDb {
         let mut records = Vec::new();
         for o in &floor.obstacles {
             let (category, poi_type) = match o.kind {
@@ -151,10 +154,10 @@ impl PoiDb {
                 split(&d.roles, start),
             );
             r.accessibility = Some(Accessibility {
-                min_clearance_width_m: d.min_clearance_width_m,
+                min_clearance_width_m: profile.min_clearance_width(),
                 min_clearance_height_m: 0.0,
                 status: match start {
-                    Start::Keep => d.status,
+                    Start::Keep => classified_status(d, profile).0,
                     Start::Clear => AccessibilityStatus::PendingValidation,
                 },
                 method: ValidationMethod::GeometricAnalysis,

@@ -167,6 +167,7 @@ pub fn run_with(
     let opts = SimOptions {
         dt: scenario.dt,
         start: scenario.start,
+        poi_profile: crate::scenario::load_profile(&scenario.building.profile, &scenario.dir)?,
         behaviour: scenario.behaviour.clone(),
         record: false,
         ..SimOptions::default()

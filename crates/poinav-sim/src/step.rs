@@ -60,6 +60,9 @@ pub struct SimOptions {
     pub cell_m: f64,
     /// How the POI database starts.
     pub start: Start,
+    /// The profile the POI database's Pset_RobotAccessibility values are for: the enrichment's
+    /// (a scenario's `[building] profile`), not necessarily any robot's.
+    pub poi_profile: RobotProfile,
     /// Behaviour constants.
     pub behaviour: Behaviour,
     /// Keep a record per step and robot.
@@ -72,6 +75,7 @@ impl Default for SimOptions {
             dt: DT,
             cell_m: 1.0,
             start: Start::Keep,
+            poi_profile: RobotProfile::paper(),
             behaviour: Behaviour::default(),
             record: true,
         }
@@ -324,7 +328,7 @@ impl<'f> Sim<'f> {
             .fold(0.0, f64::max);
         let slack = 2.0 * max_speed * opts.dt + 0.1;
         let mut world = World::new(floor, opts.cell_m, slack);
-        let db = PoiDb::new(floor, opts.start);
+        let db = PoiDb::new(floor, opts.start, &opts.poi_profile);
         let mut robots = Vec::new();
         let mut ctrls = Vec::new();
         for s in setups {
@@ -707,7 +711,7 @@ impl<'f> Sim<'f> {
                                 t,
                                 robot: robot.name.clone(),
                                 kind: EventKind::Arrived {
-                                    zone: zr.id.clone(),
+                                    zone: zr.id.to_string(),
                                     name: zr.name.clone(),
                                 },
                             });
@@ -894,7 +898,7 @@ impl<'f> Sim<'f> {
                 let (with, class) = match *o {
                     Owner::Obstacle(k) => {
                         let ob = &self.floor.obstacles[k as usize];
-                        (ob.id.clone(), ob.class.clone())
+                        (ob.id.to_string(), ob.class.clone())
                     }
                     Owner::Robot(j) => (
                         self.robots[j as usize].global_id.clone(),
@@ -924,13 +928,13 @@ impl<'f> Sim<'f> {
         Names {
             robots: self.robots.iter().map(|r| r.name.clone()).collect(),
             robot_ids: self.robots.iter().map(|r| r.global_id.clone()).collect(),
-            obstacles: f.obstacles.iter().map(|o| o.id.clone()).collect(),
+            obstacles: f.obstacles.iter().map(|o| o.id.to_string()).collect(),
             obstacle_classes: f.obstacles.iter().map(|o| o.class.clone()).collect(),
-            doors: f.doors.iter().map(|d| d.id.clone()).collect(),
+            doors: f.doors.iter().map(|d| d.id.to_string()).collect(),
             zones: f
                 .zones
                 .iter()
-                .map(|z| z.name.clone().unwrap_or_else(|| z.id.clone()))
+                .map(|z| z.name.clone().unwrap_or_else(|| z.id.to_string()))
                 .collect(),
         }
     }

@@ -3,7 +3,7 @@
 
 use glam::DVec2;
 use poinav_nav::{Floor, FloorDoor, FloorObstacle, FloorZone, ObstacleKind};
-use poinav_roles::{AccessibilityStatus, CoordinationProtocol, RobotProfile, Role};
+use poinav_roles::{CoordinationProtocol, RobotProfile, Role};
 
 use crate::algorithm1::{self, Behaviour, Env, Mind, PendingClearance, Perception, Sink};
 use crate::events::Event;
@@ -83,8 +83,8 @@ pub(crate) fn door_floor(w: f64, t: f64) -> Floor {
             ring: rect(-w / 2.0, 0.0, w / 2.0, t),
             center: DVec2::new(0.0, t / 2.0),
             clear_width_m: w,
-            status: AccessibilityStatus::PendingValidation,
-            min_clearance_width_m: 0.9,
+            classified_width_m: None,
+            blocked: None,
             roles: vec![Role::Transition],
             spaces: None,
             doorless: false,
@@ -172,7 +172,7 @@ impl<'f> View<'f> {
             floor,
             nav: Plan::new(floor),
             world,
-            db: PoiDb::new(floor, Start::Keep),
+            db: PoiDb::new(floor, Start::Keep, &RobotProfile::paper()),
             robots,
             behaviour: Behaviour::default(),
             events: Vec::new(),

@@ -711,7 +711,7 @@ mod tests {
             let c = DVec2::new(rng(&mut seed) * 20.0, rng(&mut seed) * 12.0);
             let h = DVec2::new(0.05 + rng(&mut seed), 0.05 + rng(&mut seed) * 0.3);
             floor.obstacles.push(FloorObstacle {
-                id: format!("w{i}"),
+                id: format!("w{i}").into(),
                 class: "IfcWall".into(),
                 kind: ObstacleKind::Structure,
                 rings: vec![vec![

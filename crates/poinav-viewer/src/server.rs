@@ -27,7 +27,9 @@ use crate::error::ViewerError;
 use crate::live::{Command, Live};
 use crate::protocol::{parse_key, ClientMessage};
 use crate::state::{ViewStorey, Viewer};
+use poinav_nav::door_status::classified_status;
 use poinav_nav::ObstacleKind;
+use poinav_roles::RobotProfile;
 
 /// WebSocket close code for a message over the size limit (RFC 6455 §7.4.1).
 const CLOSE_TOO_BIG: u16 = 1009;
@@ -67,8 +69,10 @@ fn ring_json(ring: &[glam::DVec2]) -> Vec<[f64; 2]> {
 }
 
 /// One storey of the scene: its floor (bounds, doors with their passages and status, zones,
-/// obstacle outlines for the cut view) and its robots with their start poses.
-fn storey_json(s: &ViewStorey) -> serde_json::Value {
+/// obstacle outlines for the cut view) and its robots with their start poses. A door's status
+/// is the classification's for `profile` (the POI database's, what the simulation starts
+/// from).
+fn storey_json(s: &ViewStorey, profile: &RobotProfile) -> serde_json::Value {
     let robots: Vec<_> = s
         .robots
         .iter()
@@ -95,7 +99,7 @@ fn storey_json(s: &ViewStorey) -> serde_json::Value {
             json!({
                 "id": d.id,
                 "name": d.name,
-                "status": d.status.label(),
+                "status": classified_status(d, profile).0.label(),
                 "doorless": d.doorless,
                 "center": [d.center.x, d.center.y],
                 "ring": ring_json(&d.ring),
@@ -152,7 +156,11 @@ fn storey_json(s: &ViewStorey) -> serde_json::Value {
 /// fields copied), with the title, the fixed step, the server's limits and the building's
 /// parts (`model`: URL, storey index or null, name, elevation, elements and bytes of each).
 fn scene_json(v: &Viewer, config: &ServerConfig) -> String {
-    let storeys: Vec<_> = v.storeys.iter().map(storey_json).collect();
+    let storeys: Vec<_> = v
+        .storeys
+        .iter()
+        .map(|s| storey_json(s, &v.options.poi_profile))
+        .collect();
     let model: Vec<_> = v
         .model
         .iter()

@@ -119,6 +119,7 @@ impl LiveTrace {
         let map = poinav_mcap::storey_map(floor, profile, &poinav_nav::Nav2Options::default())?;
         let scene = poinav_mcap::Scene {
             floor,
+            profile,
             map: &map,
             dt,
         };

@@ -281,6 +281,12 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
             "two robots in the largest space".to_string(),
         ),
     };
+    // The POI database (and the doors' colours) hold the enrichment's statuses: for the
+    // profile the floors were classified for.
+    let options = SimOptions {
+        poi_profile: classification.profile.clone(),
+        ..options
+    };
     // The scenario's robots drive on its storey; every other storey (and every storey without
     // a scenario) gets two key-driven robots where there is room for them.
     let mut scenario_setups = scenario_setups;

@@ -72,6 +72,7 @@ fn write_mcap(
     let map = poinav_mcap::storey_map(run.building.floor(), &profile, &options)?;
     let scene = poinav_mcap::Scene {
         floor: run.building.floor(),
+        profile: &profile,
         map: &map,
         dt: scenario.dt,
     };

@@ -165,7 +165,7 @@ fn check_edges(graph: &Graph, building: &Building, nav: &Navigator<'_>, tally: &
             let c = building
                 .connections
                 .iter()
-                .find(|c| c.id == m["element"])
+                .find(|c| c.id.as_str() == m["element"])
                 .unwrap();
             assert_eq!(c.kind.label(), kind);
             let fi = |name: &Value| building.floor_index(name.as_str().unwrap()).unwrap();
@@ -191,7 +191,7 @@ fn check_edges(graph: &Graph, building: &Building, nav: &Navigator<'_>, tally: &
         let mut slowest: f64 = 1.0;
         let mut roles_seen: BTreeSet<String> = BTreeSet::new();
         for z in m["zones"].as_array().unwrap() {
-            let zone = floor.zones.iter().find(|x| x.id == *z).unwrap();
+            let zone = floor.zones.iter().find(|x| x.id.as_str() == *z).unwrap();
             slowest = slowest.min(zone_fraction(&zone.roles, zone.coordination.map(|c| c.1)));
             for r in &zone.roles {
                 if matches!(r, Role::Hazard | Role::Narrow | Role::MultiRobotZone) {
@@ -201,7 +201,11 @@ fn check_edges(graph: &Graph, building: &Building, nav: &Navigator<'_>, tally: &
         }
         let mut expected_doors = BTreeSet::new();
         for d in m["doors"].as_array().unwrap() {
-            let k = floor.doors.iter().position(|x| x.id == *d).unwrap();
+            let k = floor
+                .doors
+                .iter()
+                .position(|x| x.id.as_str() == *d)
+                .unwrap();
             let door = &floor.doors[k];
             let status = nav.floors[fi].grid.occupancy.doors[k].status;
             let f = door_fraction(&door.roles, status);
@@ -211,7 +215,7 @@ fn check_edges(graph: &Graph, building: &Building, nav: &Navigator<'_>, tally: &
             slowest = slowest.min(f);
             let leaving = start["kind"] == "door" && start["element"] == *d;
             if !door.doorless && !leaving {
-                expected_doors.insert(door.id.clone());
+                expected_doors.insert(door.id.to_string());
             }
         }
         let limit = m["speed_limit"].as_f64().unwrap();

@@ -123,7 +123,7 @@ fn place(building: &Building, floor: usize, zone: usize) -> Place {
     let f = &building.floors[floor];
     Place {
         floor: Some(f.name.clone()),
-        target: Target::Zone(f.zones[zone].id.clone()),
+        target: Target::Zone(f.zones[zone].id.to_string()),
     }
 }
 

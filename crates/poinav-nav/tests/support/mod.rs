@@ -38,8 +38,8 @@ pub fn door(id: &str, name: &str, ring: Vec<DVec2>, clear_width_m: f64) -> Floor
         ring,
         center,
         clear_width_m,
-        status,
-        min_clearance_width_m: profile.min_clearance_width(),
+        classified_width_m: Some(clear_width_m),
+        blocked: None,
         roles,
         spaces: None,
         doorless: false,
@@ -319,7 +319,7 @@ pub fn office_floor() -> Floor {
                     band.y1 - 1.0
                 };
                 obstacles.push(FloorObstacle {
-                    id: format!("desk-{number}"),
+                    id: format!("desk-{number}").into(),
                     class: "IfcFurniture".into(),
                     kind: ObstacleKind::Furniture,
                     rings: vec![rect(x0 + 0.3, far, x0 + 1.7, far + 0.7)],

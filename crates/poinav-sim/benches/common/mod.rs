@@ -124,7 +124,7 @@ pub fn open_floor(n: usize) -> (Floor, Vec<poinav_sim::RobotSetup>) {
     let size = side as f64 * 3.0 + 4.0;
     use poinav_nav::polygon::rect;
     let obstacle = |id: String, ring: Vec<DVec2>| FloorObstacle {
-        id,
+        id: id.into(),
         class: "IfcWall".into(),
         kind: ObstacleKind::Structure,
         rings: vec![ring],
