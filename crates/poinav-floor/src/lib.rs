@@ -9,14 +9,18 @@
 //! - [`index`]: typed indices into a floor's zones and doors ([`ZoneIdx`], [`DoorIdx`]), with
 //!   `Option` for none.
 //! - [`level`]: each storey's walking level and which storeys are at ground level.
-//! - [`polygon`]: plane geometry on rings (`&[DVec2]`, the ring first): containment,
-//!   distances, areas, interior points, passage frames.
+//! - [`polygon`]: plane geometry on rings (`poinav-plane`, re-exported; the ring first):
+//!   containment, distances, areas, interior points, passage frames; [`Ring`], the type of
+//!   every ring on a floor.
 
 pub mod building;
 pub mod floor;
 pub mod index;
 pub mod level;
-pub mod polygon;
+
+/// Plane geometry on rings: `poinav-plane`, re-exported so a floor's users need not name it.
+pub use poinav_plane as polygon;
+pub use poinav_plane::Ring;
 
 pub use building::{Building, ConnectionKind, Landing, VerticalConnection};
 pub use floor::{Floor, FloorDoor, FloorObstacle, FloorZone, ObstacleKind};

@@ -361,22 +361,11 @@ impl<'a> Navigator<'a> {
             .filter(|o| &o.id != own)
             .filter_map(|o| {
                 // An element past the vertex bound stands as its bounding box, as in the grid.
-                let vertices: usize = o.rings.iter().map(Vec::len).sum();
-                let boxed: Vec<Vec<glam::DVec2>>;
+                let vertices: usize = o.rings.iter().map(|r| r.len()).sum();
+                let boxed: Vec<crate::Ring>;
                 let rings = if vertices > crate::bounds::ELEMENT_VERTICES {
-                    boxed = o
-                        .rings
-                        .iter()
-                        .filter_map(|r| crate::polygon::bounds(r))
-                        .reduce(|(a, b), (c, d)| (a.min(c), b.max(d)))
-                        .map(|(lo, hi)| {
-                            vec![
-                                lo,
-                                glam::DVec2::new(hi.x, lo.y),
-                                hi,
-                                glam::DVec2::new(lo.x, hi.y),
-                            ]
-                        })
+                    boxed = crate::polygon::bounds_of(o.rings.iter().flat_map(|r| r.iter()))
+                        .map(|(lo, hi)| crate::polygon::rect(lo.x, lo.y, hi.x, hi.y))
                         .into_iter()
                         .collect();
                     &boxed

@@ -252,7 +252,7 @@ mod tests {
             id: id.into(),
             name: Some(name.into()),
             long_name: Some(long.into()),
-            ring: Vec::new(),
+            ring: Default::default(),
             roles: Vec::new(),
             coordination: None,
         }

@@ -217,7 +217,7 @@ mod tests {
             id: format!("z{}", ring.len()),
             name: None,
             long_name: None,
-            ring,
+            ring: ring.into(),
             roles: vec![],
             coordination: None,
         }

@@ -78,10 +78,9 @@ type Segment = (DVec2, DVec2);
 /// Candidate start points of `zone` with their room (distance to the nearest wall or obstacle
 /// edge), most room first, and the wall segments near the zone.
 fn spots(floor: &Floor, zone: &poinav_nav::FloorZone) -> (Vec<Spot>, Vec<Segment>) {
-    let (lo, hi) = zone.ring.iter().fold(
-        (DVec2::splat(f64::MAX), DVec2::splat(f64::MIN)),
-        |(lo, hi), p| (lo.min(*p), hi.max(*p)),
-    );
+    let Some((lo, hi)) = poinav_nav::polygon::bounds(&zone.ring) else {
+        return (Vec::new(), Vec::new());
+    };
     let size = hi - lo;
     if !(size.x.is_finite() && size.y.is_finite()) {
         return (Vec::new(), Vec::new());
@@ -114,7 +113,7 @@ fn spots(floor: &Floor, zone: &poinav_nav::FloorZone) -> (Vec<Spot>, Vec<Segment
             }
             let d = segments
                 .iter()
-                .map(|&(a, b)| segment_distance(p, a, b))
+                .map(|&(a, b)| segment_distance(a, b, p))
                 .fold(f64::MAX, f64::min);
             candidates.push((d, p));
         }
