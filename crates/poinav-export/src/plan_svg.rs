@@ -457,16 +457,10 @@ fn path(regions: &[Region]) -> String {
     d.trim_end().to_string()
 }
 
-/// A number to the millimetre, without trailing zeros.
+/// A number to the millimetre, without trailing zeros (`poinav_io::number::fixed`, as the
+/// simulator's traces and plots write theirs).
 fn num(v: f64) -> String {
-    let v = if v.abs() < 5e-4 { 0.0 } else { v };
-    let t = format!("{v:.3}");
-    let t = t.trim_end_matches('0').trim_end_matches('.');
-    if t == "-0" {
-        "0".into()
-    } else {
-        t.to_string()
-    }
+    poinav_io::number::fixed(v, 3)
 }
 
 #[cfg(test)]
