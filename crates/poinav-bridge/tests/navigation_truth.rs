@@ -54,7 +54,12 @@ fn door_named<'a>(nav: &'a Navigator<'_>, name: &str) -> &'a poinav_nav::graph::
     nav.topology
         .doors
         .iter()
-        .find(|d| nav.building.floors[d.floor].doors[d.door].name.as_deref() == Some(name))
+        .find(|d| {
+            nav.building.floors[d.floor].doors[d.door.get()]
+                .name
+                .as_deref()
+                == Some(name)
+        })
         .unwrap_or_else(|| panic!("no door {name}"))
 }
 
@@ -63,7 +68,7 @@ fn zone_names(nav: &Navigator<'_>, d: &poinav_nav::graph::DoorSides) -> Vec<Stri
         .zones
         .iter()
         .map(|z| match z {
-            Some(z) => nav.building.floors[d.floor].zones[*z]
+            Some(z) => nav.building.floors[d.floor].zones[z.get()]
                 .name
                 .clone()
                 .unwrap_or_default(),
@@ -115,7 +120,7 @@ fn the_test_house_tells_the_truth() {
     for (l, zone) in stair.landings.iter().zip(["Hall", "Landing hall"]) {
         let f = &b.floors[l.floor];
         let z = zone_at(f, l.point).expect("a landing is in a zone");
-        assert_eq!(f.zones[z].name.as_deref(), Some(zone));
+        assert_eq!(f.zones[z.get()].name.as_deref(), Some(zone));
         let g = &nav.floors[l.floor].grid;
         let i = g.occupancy.cell_of(l.point).unwrap();
         assert_eq!(g.occupancy.cells[i], CellState::Free, "{l:?}");
@@ -130,7 +135,7 @@ fn the_test_house_tells_the_truth() {
         .iter()
         .filter(|d| d.exterior())
         .map(|d| {
-            b.floors[d.floor].doors[d.door]
+            b.floors[d.floor].doors[d.door.get()]
                 .name
                 .as_deref()
                 .unwrap_or("?")
@@ -259,7 +264,7 @@ fn check_properties(name: &str, file: &Path, b: &Building, nav: &Navigator<'_>) 
     // walled in.
     for d in t.doors.iter().filter(|d| d.exterior()) {
         let floor = &b.floors[d.floor];
-        let label = format!("{name}: entrance {:?}", floor.doors[d.door].name);
+        let label = format!("{name}: entrance {:?}", floor.doors[d.door.get()].name);
         let kind = if b.at_ground(d.floor) {
             Entrance::Ground
         } else {
@@ -272,7 +277,7 @@ fn check_properties(name: &str, file: &Path, b: &Building, nav: &Navigator<'_>) 
                 d.entrance()
             ));
         }
-        if let (Some(f), Some(side)) = (floor.door_frame(d.door), d.outside_side()) {
+        if let (Some(f), Some(side)) = (floor.door_frame(d.door.get()), d.outside_side()) {
             let p = f.center + f.normal * side * (f.half_depth + 0.3);
             if zone_at(floor, p).is_some() {
                 problems.push(format!("{label} has a space beyond its outside face"));

@@ -24,5 +24,5 @@ pub use poinav_plane::Ring;
 
 pub use building::{Building, ConnectionKind, Landing, VerticalConnection};
 pub use floor::{Floor, FloorDoor, FloorObstacle, FloorZone, ObstacleKind};
-pub use index::{DoorIdx, ZoneIdx};
+pub use index::{DoorIdx, ObstacleIdx, ZoneIdx};
 pub use level::{Entrance, FloorLevel, LevelSource};

@@ -19,6 +19,7 @@ use crate::grid::NavGrid;
 use crate::level::Entrance;
 use crate::polygon;
 use crate::zone_index::ZoneIndex;
+use crate::{DoorIdx, ZoneIdx};
 
 /// What a node stands for.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -104,12 +105,12 @@ pub struct DoorSides {
     /// Storey index.
     pub floor: usize,
     /// Index in `Floor::doors`.
-    pub door: usize,
+    pub door: DoorIdx,
     /// Its node.
     pub node: usize,
     /// Zone index on the side against the passage frame's normal and along it; `None` is
     /// outside the building (no zone within 0.5 m, or the door bounds one space only).
-    pub zones: [Option<usize>; 2],
+    pub zones: [Option<ZoneIdx>; 2],
     /// Where the sides come from: `true` from the spaces the door bounds
     /// ([`crate::FloorDoor::spaces`]), `false` from geometry alone.
     pub from_spaces: bool,
@@ -190,20 +191,21 @@ pub const SIDE_PROBE_M: f64 = 0.5;
 /// The first zone (in floor order) containing `p`, among zones within
 /// [`crate::bounds::ELEMENT_VERTICES`]: a fold over every zone, for a probe or two; many
 /// probes of one floor go through its [`ZoneIndex`], which answers the same.
-pub fn zone_at(floor: &Floor, p: DVec2) -> Option<usize> {
-    floor.zones.iter().position(|z| {
+pub fn zone_at(floor: &Floor, p: DVec2) -> Option<ZoneIdx> {
+    let found = floor.zones.iter().position(|z| {
         // A zone past the vertex bound is unknown in the grid, and doors near it are
         // undecided ([`crate::bounds::door_side_bounds`]): no search pays for its vertices.
         z.ring.len() <= crate::bounds::ELEMENT_VERTICES
             && polygon::bounds(&z.ring)
                 .is_some_and(|(lo, hi)| p.x >= lo.x && p.y >= lo.y && p.x <= hi.x && p.y <= hi.y)
             && polygon::contains(&z.ring, p)
-    })
+    });
+    found.map(ZoneIdx::new)
 }
 
 /// The zone holding `p` ([`ZoneIndex::zone_at`]), else the nearest within [`SIDE_PROBE_M`]
 /// (the first on a tie): where a landing or a robot standing at `p` is.
-pub fn zone_near(floor: &Floor, zones: &ZoneIndex, p: DVec2) -> Option<usize> {
+pub fn zone_near(floor: &Floor, zones: &ZoneIndex, p: DVec2) -> Option<ZoneIdx> {
     zones.zone_at(floor, p).or_else(|| {
         floor
             .zones
@@ -213,7 +215,7 @@ pub fn zone_near(floor: &Floor, zones: &ZoneIndex, p: DVec2) -> Option<usize> {
             .map(|(k, z)| (polygon::area_distance(&z.ring, p), k))
             .filter(|(d, _)| *d <= SIDE_PROBE_M)
             .min_by(|a, b| a.0.total_cmp(&b.0))
-            .map(|(_, k)| k)
+            .map(|(_, k)| ZoneIdx::new(k))
     })
 }
 
@@ -223,7 +225,7 @@ pub fn frame_zones(
     floor: &Floor,
     zones: &ZoneIndex,
     f: &crate::polygon::PassageFrame,
-) -> [Option<usize>; 2] {
+) -> [Option<ZoneIdx>; 2] {
     let step = 0.025;
     let mut sides = [None, None];
     for (s, side) in [-1.0, 1.0].into_iter().enumerate() {
@@ -243,20 +245,21 @@ pub fn frame_zones(
 /// one-sided boundary, as many exporters write) takes the zone geometry finds beyond that
 /// face, so only a door with no space behind it has a side outside; otherwise from geometry
 /// alone (the zones just beyond the passage's faces).
-pub fn door_zones(floor: &Floor, door: usize) -> [Option<usize>; 2] {
+pub fn door_zones(floor: &Floor, door: usize) -> [Option<ZoneIdx>; 2] {
     door_zones_in(floor, &ZoneIndex::new(floor), door)
 }
 
 /// [`door_zones`] with `floor`'s [`ZoneIndex`] (for many doors, build it once).
-pub fn door_zones_in(floor: &Floor, zones: &ZoneIndex, door: usize) -> [Option<usize>; 2] {
+pub fn door_zones_in(floor: &Floor, zones: &ZoneIndex, door: usize) -> [Option<ZoneIdx>; 2] {
     let geometric = geometric_door_zones_in(floor, zones, door);
     let d = &floor.doors[door];
     let Some(ids) = d.spaces.as_ref().filter(|s| !s.is_empty()) else {
         return geometric;
     };
     // The door's own spaces on this floor (a space may have several regions).
-    let own: Vec<usize> = (0..floor.zones.len())
+    let own: Vec<ZoneIdx> = (0..floor.zones.len())
         .filter(|&z| ids.contains(&floor.zones[z].id))
+        .map(ZoneIdx::new)
         .collect();
     if own.is_empty() {
         return geometric;
@@ -278,7 +281,10 @@ pub fn door_zones_in(floor: &Floor, zones: &ZoneIndex, door: usize) -> [Option<u
     // As many sides as the door has spaces (at most two), the missing ones filled with the
     // nearest unused space.
     let distinct = {
-        let mut v: Vec<&str> = own.iter().map(|&z| floor.zones[z].id.as_str()).collect();
+        let mut v: Vec<&str> = own
+            .iter()
+            .map(|&z| floor.zones[z.get()].id.as_str())
+            .collect();
         v.sort_unstable();
         v.dedup();
         v.len().min(2)
@@ -287,18 +293,18 @@ pub fn door_zones_in(floor: &Floor, zones: &ZoneIndex, door: usize) -> [Option<u
         let used: Vec<&str> = sides
             .iter()
             .flatten()
-            .map(|&z| floor.zones[z].id.as_str())
+            .map(|&z| floor.zones[z.get()].id.as_str())
             .collect();
-        let mut best: Option<(f64, usize, usize)> = None;
+        let mut best: Option<(f64, usize, ZoneIdx)> = None;
         for (s, side) in [(0, -1.0), (1, 1.0)] {
             if sides[s].is_some() {
                 continue;
             }
             for &z in &own {
-                if used.contains(&floor.zones[z].id.as_str()) {
+                if used.contains(&floor.zones[z.get()].id.as_str()) {
                     continue;
                 }
-                let dist = polygon::area_distance(&floor.zones[z].ring, probe(side));
+                let dist = polygon::area_distance(&floor.zones[z.get()].ring, probe(side));
                 if best.is_none_or(|(bd, _, _)| dist < bd) {
                     best = Some((dist, s, z));
                 }
@@ -312,16 +318,16 @@ pub fn door_zones_in(floor: &Floor, zones: &ZoneIndex, door: usize) -> [Option<u
     // A side still empty: another space geometry finds beyond that face (never the space on
     // the other side again).
     for s in 0..2 {
-        let other = sides[1 - s].map(|z| floor.zones[z].id.as_str());
+        let other = sides[1 - s].map(|z| floor.zones[z.get()].id.as_str());
         if sides[s].is_none() {
-            sides[s] = geometric[s].filter(|&z| Some(floor.zones[z].id.as_str()) != other);
+            sides[s] = geometric[s].filter(|&z| Some(floor.zones[z.get()].id.as_str()) != other);
         }
     }
     sides
 }
 
 /// The zones on the two sides of a door from geometry alone.
-pub fn geometric_door_zones(floor: &Floor, door: usize) -> [Option<usize>; 2] {
+pub fn geometric_door_zones(floor: &Floor, door: usize) -> [Option<ZoneIdx>; 2] {
     geometric_door_zones_in(floor, &ZoneIndex::new(floor), door)
 }
 
@@ -330,7 +336,7 @@ pub fn geometric_door_zones_in(
     floor: &Floor,
     zones: &ZoneIndex,
     door: usize,
-) -> [Option<usize>; 2] {
+) -> [Option<ZoneIdx>; 2] {
     let d = &floor.doors[door];
     let Some(f) = floor.door_frame_in(door, zones) else {
         // No passage ring: the two zones nearest to the centre within the probe distance.
@@ -343,7 +349,10 @@ pub fn geometric_door_zones_in(
             .filter(|(dist, _)| *dist <= SIDE_PROBE_M)
             .collect();
         near.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-        return [near.first().map(|n| n.1), near.get(1).map(|n| n.1)];
+        return [
+            near.first().map(|n| ZoneIdx::new(n.1)),
+            near.get(1).map(|n| ZoneIdx::new(n.1)),
+        ];
     };
     frame_zones(floor, zones, &f)
 }
@@ -409,10 +418,10 @@ impl Topology {
                 } else {
                     door_zones_in(floor, zones, k)
                 };
-                let mut linked: Vec<usize> = zones.iter().flatten().copied().collect();
+                let mut linked: Vec<ZoneIdx> = zones.iter().flatten().copied().collect();
                 linked.dedup();
                 for z in linked {
-                    let zn = zone_nodes[fi][z];
+                    let zn = zone_nodes[fi][z.get()];
                     edges.push(Edge {
                         id: edges.len(),
                         from: zn,
@@ -427,7 +436,7 @@ impl Topology {
                     .is_some_and(|ids| floor.zones.iter().any(|z| ids.contains(&z.id)));
                 doors.push(DoorSides {
                     floor: fi,
-                    door: k,
+                    door: DoorIdx::new(k),
                     node,
                     zones,
                     from_spaces,
@@ -460,7 +469,7 @@ impl Topology {
                 });
                 let zone = zone_near(floor, &indexes[l.floor], l.point);
                 if let Some(z) = zone {
-                    let zn = zone_nodes[l.floor][z];
+                    let zn = zone_nodes[l.floor][z.get()];
                     edges.push(Edge {
                         id: edges.len(),
                         from: zn,
@@ -550,7 +559,7 @@ impl Topology {
     pub fn door(&self, floor: usize, door: usize) -> Option<&DoorSides> {
         self.doors
             .iter()
-            .find(|d| d.floor == floor && d.door == door)
+            .find(|d| d.floor == floor && d.door.get() == door)
     }
 
     /// The node of a zone named `name` (Name or LongName) on storey `floor` (any storey when
@@ -604,17 +613,17 @@ impl Topology {
 
     /// Shortest paths from `starts`: edges cost their length (connections
     /// `connection_cost(a, b)`), entering a node costs `node_cost(node)`, and `None` there
-    /// closes the node. Returns per node the distance and the previous node (`usize::MAX` for
+    /// closes the node. Returns per node the distance and the previous node (`None` for
     /// starts and unreached nodes).
     pub fn search(
         &self,
         starts: &[usize],
         node_cost: impl Fn(usize) -> Option<f64>,
         connection_cost: impl Fn(usize, usize) -> f64,
-    ) -> (Vec<f64>, Vec<usize>) {
+    ) -> (Vec<f64>, Vec<Option<usize>>) {
         let n = self.nodes.len();
         let mut dist = vec![f64::INFINITY; n];
-        let mut prev = vec![usize::MAX; n];
+        let mut prev = vec![None; n];
         let mut heap = BinaryHeap::new();
         for &s in starts {
             if s < n && dist[s] > 0.0 {
@@ -637,7 +646,7 @@ impl Topology {
                 let nd = d + w + extra;
                 if nd < dist[v] {
                     dist[v] = nd;
-                    prev[v] = u;
+                    prev[v] = Some(u);
                     heap.push(HeapItem(nd, v));
                 }
             }
@@ -645,26 +654,28 @@ impl Topology {
         (dist, prev)
     }
 
-    /// The doors (indices in `Floor::doors`) on the shortest way from zone `from` to zone
-    /// `to` of storey `floor`, in order, through doors `usable` accepts only (and no stair,
-    /// ramp or lift): [`Topology::search`] from `from`'s node. Empty when `from == to`; `None`
-    /// when `to` cannot be reached.
+    /// The doors on the shortest way from zone `from` to zone `to` of storey `floor`, in
+    /// order, through doors `usable` accepts only (and no stair, ramp or lift):
+    /// [`Topology::search`] from `from`'s node. Empty when `from == to`; `None` when `to`
+    /// cannot be reached.
     pub fn door_path(
         &self,
         floor: usize,
-        from: usize,
-        to: usize,
-        usable: impl Fn(usize) -> bool,
-    ) -> Option<Vec<usize>> {
-        let start = *self.zone_nodes.get(floor)?.get(from)?;
-        let goal = *self.zone_nodes[floor].get(to)?;
+        from: ZoneIdx,
+        to: ZoneIdx,
+        usable: impl Fn(DoorIdx) -> bool,
+    ) -> Option<Vec<DoorIdx>> {
+        let start = *self.zone_nodes.get(floor)?.get(from.get())?;
+        let goal = *self.zone_nodes[floor].get(to.get())?;
         let (dist, prev) = self.search(
             &[start],
             |n| {
                 let node = &self.nodes[n];
                 match node.kind {
                     NodeKind::Zone => Some(0.0),
-                    NodeKind::Door => (node.floor == floor && usable(node.index)).then_some(0.0),
+                    NodeKind::Door => {
+                        (node.floor == floor && usable(DoorIdx::new(node.index))).then_some(0.0)
+                    }
                     NodeKind::Landing => None,
                 }
             },
@@ -677,17 +688,17 @@ impl Topology {
             Topology::path_to(&prev, goal)
                 .into_iter()
                 .filter(|&n| self.nodes[n].kind == NodeKind::Door)
-                .map(|n| self.nodes[n].index)
+                .map(|n| DoorIdx::new(self.nodes[n].index))
                 .collect(),
         )
     }
 
     /// The node path ending at `goal` from [`Topology::search`]'s `prev`.
-    pub fn path_to(prev: &[usize], goal: usize) -> Vec<usize> {
+    pub fn path_to(prev: &[Option<usize>], goal: usize) -> Vec<usize> {
         let mut path = vec![goal];
         let mut at = goal;
-        while prev[at] != usize::MAX {
-            at = prev[at];
+        while let Some(p) = prev[at] {
+            at = p;
             path.push(at);
             if path.len() > prev.len() {
                 break;

@@ -160,7 +160,7 @@ impl<'a> Navigator<'a> {
         // A door whose side without a zone is walled in is no entrance (the grid found it).
         // A door the grid gave up on is no entrance and not passable either.
         for d in &mut topology.doors {
-            let g = &floors[d.floor].grid.occupancy.doors[d.door];
+            let g = &floors[d.floor].grid.occupancy.doors[d.door.get()];
             d.walled_in = g.walled_in;
             d.gave_up |= g.gave_up;
         }

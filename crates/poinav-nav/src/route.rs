@@ -619,7 +619,7 @@ impl Navigator<'_> {
                 let space = self
                     .building
                     .find_space(name, floor, place.floor.as_deref())?;
-                let node = self.topology.zone_nodes[space.floor][space.zone];
+                let node = self.topology.zone_nodes[space.floor][space.zone.get()];
                 let n = &self.topology.nodes[node];
                 let cell = self.zone_cell(n.floor, n.index).ok_or_else(|| {
                     NavError::NoRoom(format!(
@@ -771,7 +771,7 @@ impl Navigator<'_> {
         let mut closed = Vec::new();
         for d in exterior {
             let grid = &self.floors[d.floor].grid;
-            let frame = grid.occupancy.doors[d.door].frame;
+            let frame = grid.occupancy.doors[d.door.get()].frame;
             let (Some(f), Some(side)) = (frame, d.outside_side()) else {
                 continue;
             };

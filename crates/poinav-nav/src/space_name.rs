@@ -6,7 +6,7 @@ use std::fmt;
 
 use crate::building::Building;
 use crate::floor::FloorZone;
-use crate::NavError;
+use crate::{NavError, ZoneIdx};
 
 /// A space of a [`Building`]: storey index and zone index on it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
@@ -14,7 +14,7 @@ pub struct SpaceRef {
     /// Index in [`Building::floors`].
     pub floor: usize,
     /// Index in that floor's [`crate::Floor::zones`].
-    pub zone: usize,
+    pub zone: ZoneIdx,
 }
 
 /// One of the spaces an ambiguous name fits.
@@ -109,15 +109,15 @@ pub trait SpaceNames {
 impl SpaceNames for Building {
     fn spaces(&self) -> impl Iterator<Item = (SpaceRef, &FloorZone)> {
         self.floors.iter().enumerate().flat_map(|(floor, f)| {
-            f.zones
-                .iter()
-                .enumerate()
-                .map(move |(zone, z)| (SpaceRef { floor, zone }, z))
+            f.zones.iter().enumerate().map(move |(zone, z)| {
+                let zone = ZoneIdx::new(zone);
+                (SpaceRef { floor, zone }, z)
+            })
         })
     }
 
     fn space(&self, s: SpaceRef) -> &FloorZone {
-        &self.floors[s.floor].zones[s.zone]
+        &self.floors[s.floor].zones[s.zone.get()]
     }
 
     fn spaces_named(&self, name: &str, floor: Option<usize>) -> Vec<SpaceRef> {
@@ -288,7 +288,10 @@ mod tests {
     #[test]
     fn a_unique_name_a_global_id_or_name_at_storey_selects_one_space() {
         let b = building();
-        let at = |floor, zone| SpaceRef { floor, zone };
+        let at = |floor, zone| SpaceRef {
+            floor,
+            zone: ZoneIdx::new(zone),
+        };
         assert_eq!(b.find_space("OFFICE", None, None).unwrap(), at(0, 0));
         assert_eq!(b.find_space("g3", None, None).unwrap(), at(0, 2));
         assert_eq!(
