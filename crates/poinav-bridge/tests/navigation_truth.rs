@@ -218,18 +218,18 @@ fn check_properties(name: &str, file: &Path, b: &Building, nav: &Navigator<'_>) 
         r
     };
     for (n, node) in t.nodes.iter().enumerate() {
-        if node.kind != NodeKind::Zone || !reachable[n] {
+        if node.kind() != NodeKind::Zone || !reachable[n] {
             continue;
         }
         // A space that is a lift itself is entered at its landings.
-        let zone = &b.floors[node.floor].zones[node.index];
+        let zone = &b.floors[node.floor].zones[node.zone().unwrap().get()];
         let shaft = b.connections.iter().position(|c| c.id == zone.id);
         let entered = shaft.is_some_and(|ci| {
             t.landing_nodes[ci].iter().any(|&l| {
                 nav.open[l]
                     && t.adjacency[l]
                         .iter()
-                        .any(|&(_, w)| t.nodes[w].kind == NodeKind::Zone && reachable[w])
+                        .any(|&(_, w)| t.nodes[w].kind() == NodeKind::Zone && reachable[w])
             })
         });
         let joined = entered
@@ -237,20 +237,24 @@ fn check_properties(name: &str, file: &Path, b: &Building, nav: &Navigator<'_>) 
                 if !nav.open[v] {
                     return false;
                 }
-                match t.nodes[v].kind {
+                match t.nodes[v].kind() {
                     NodeKind::Zone => reachable[v],
                     NodeKind::Door => {
-                        let sides = t.door(t.nodes[v].floor, t.nodes[v].index).unwrap();
+                        let sides = t
+                            .door(t.nodes[v].floor, t.nodes[v].door().unwrap().get())
+                            .unwrap();
                         sides.exterior()
                             || t.adjacency[v].iter().any(|&(_, w)| w != n && reachable[w])
                     }
-                    NodeKind::Landing => t.landing_nodes[t.nodes[v].index].iter().any(|&l| {
-                        l != v
-                            && nav.open[l]
-                            && t.adjacency[l]
-                                .iter()
-                                .any(|&(_, w)| t.nodes[w].kind == NodeKind::Zone && reachable[w])
-                    }),
+                    NodeKind::Landing => t.landing_nodes[t.nodes[v].connection().unwrap()]
+                        .iter()
+                        .any(|&l| {
+                            l != v
+                                && nav.open[l]
+                                && t.adjacency[l].iter().any(|&(_, w)| {
+                                    t.nodes[w].kind() == NodeKind::Zone && reachable[w]
+                                })
+                        }),
                 }
             });
         if !joined {

@@ -33,18 +33,40 @@ pub enum NodeKind {
     Landing,
 }
 
+/// What a node stands for, with its index in its list; serialised as its `kind` and `index`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(tag = "kind", content = "index", rename_all = "kebab-case")]
+pub enum NodeOf {
+    /// A space: its index in `Floor::zones`.
+    Zone(ZoneIdx),
+    /// A door or an opening: its index in `Floor::doors`.
+    Door(DoorIdx),
+    /// A landing of a stair, ramp or lift: the connection's index in
+    /// `Building::connections`.
+    Landing(usize),
+}
+
+impl NodeOf {
+    /// Its kind.
+    pub fn kind(self) -> NodeKind {
+        match self {
+            NodeOf::Zone(_) => NodeKind::Zone,
+            NodeOf::Door(_) => NodeKind::Door,
+            NodeOf::Landing(_) => NodeKind::Landing,
+        }
+    }
+}
+
 /// A node.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Node {
     /// Index in [`Topology::nodes`].
     pub id: usize,
-    /// Kind.
-    pub kind: NodeKind,
+    /// What it stands for: a zone, door or connection, with its index in its list.
+    #[serde(flatten)]
+    pub of: NodeOf,
     /// Storey index.
     pub floor: usize,
-    /// Index of the zone, door or connection within its list (`Floor::zones`, `Floor::doors`,
-    /// `Building::connections`).
-    pub index: usize,
     /// GlobalId of the element.
     pub element: String,
     /// Name (zone Name, else LongName; door name; connection name).
@@ -58,6 +80,35 @@ pub struct Node {
 }
 
 impl Node {
+    /// Its kind.
+    pub fn kind(&self) -> NodeKind {
+        self.of.kind()
+    }
+
+    /// The zone it stands for, if a zone node.
+    pub fn zone(&self) -> Option<ZoneIdx> {
+        match self.of {
+            NodeOf::Zone(z) => Some(z),
+            _ => None,
+        }
+    }
+
+    /// The door it stands for, if a door node.
+    pub fn door(&self) -> Option<DoorIdx> {
+        match self.of {
+            NodeOf::Door(d) => Some(d),
+            _ => None,
+        }
+    }
+
+    /// The connection (index in `Building::connections`) it is a landing of, if a landing.
+    pub fn connection(&self) -> Option<usize> {
+        match self.of {
+            NodeOf::Landing(c) => Some(c),
+            _ => None,
+        }
+    }
+
     /// Position.
     pub fn position(&self) -> DVec2 {
         DVec2::new(self.x, self.y)
@@ -376,9 +427,8 @@ impl Topology {
                 ids.push(nodes.len());
                 nodes.push(Node {
                     id: nodes.len(),
-                    kind: NodeKind::Zone,
+                    of: NodeOf::Zone(ZoneIdx::new(k)),
                     floor: fi,
-                    index: k,
                     element: z.id.clone(),
                     name: z.name.clone().or_else(|| z.long_name.clone()),
                     x: p.x,
@@ -404,9 +454,8 @@ impl Topology {
                 let node = nodes.len();
                 nodes.push(Node {
                     id: node,
-                    kind: NodeKind::Door,
+                    of: NodeOf::Door(DoorIdx::new(k)),
                     floor: fi,
-                    index: k,
                     element: d.id.clone(),
                     name: d.name.clone(),
                     x: p.x,
@@ -458,9 +507,8 @@ impl Topology {
                 let node = nodes.len();
                 nodes.push(Node {
                     id: node,
-                    kind: NodeKind::Landing,
+                    of: NodeOf::Landing(ci),
                     floor: l.floor,
-                    index: ci,
                     element: c.id.clone(),
                     name: c.name.clone(),
                     x: l.point.x,
@@ -594,10 +642,10 @@ impl Topology {
     ) -> Vec<(AccessibilityStatus, String)> {
         self.nodes
             .iter()
-            .map(|n| match n.kind {
-                NodeKind::Zone => (AccessibilityStatus::FullAccess, String::new()),
-                NodeKind::Door => door_status(&building.floors[n.floor].doors[n.index], profile),
-                NodeKind::Landing => building.connections[n.index].status(profile),
+            .map(|n| match n.of {
+                NodeOf::Zone(_) => (AccessibilityStatus::FullAccess, String::new()),
+                NodeOf::Door(d) => door_status(&building.floors[n.floor].doors[d.get()], profile),
+                NodeOf::Landing(c) => building.connections[c].status(profile),
             })
             .collect()
     }
@@ -671,12 +719,10 @@ impl Topology {
             &[start],
             |n| {
                 let node = &self.nodes[n];
-                match node.kind {
-                    NodeKind::Zone => Some(0.0),
-                    NodeKind::Door => {
-                        (node.floor == floor && usable(DoorIdx::new(node.index))).then_some(0.0)
-                    }
-                    NodeKind::Landing => None,
+                match node.of {
+                    NodeOf::Zone(_) => Some(0.0),
+                    NodeOf::Door(d) => (node.floor == floor && usable(d)).then_some(0.0),
+                    NodeOf::Landing(_) => None,
                 }
             },
             |_, _| f64::INFINITY,
@@ -687,8 +733,7 @@ impl Topology {
         Some(
             Topology::path_to(&prev, goal)
                 .into_iter()
-                .filter(|&n| self.nodes[n].kind == NodeKind::Door)
-                .map(|n| DoorIdx::new(self.nodes[n].index))
+                .filter_map(|n| self.nodes[n].door())
                 .collect(),
         )
     }
@@ -733,7 +778,7 @@ impl Topology {
             .map(|n| {
                 let mut v = serde_json::json!({
                     "id": n.id,
-                    "kind": n.kind,
+                    "kind": n.kind(),
                     "floor": n.floor,
                     "element": n.element,
                     "name": n.name,
@@ -741,9 +786,9 @@ impl Topology {
                     "y": round6(n.y),
                     "roles": n.roles,
                 });
-                match n.kind {
-                    NodeKind::Door => {
-                        let sides = self.door(n.floor, n.index);
+                match n.of {
+                    NodeOf::Door(d) => {
+                        let sides = self.door(n.floor, d.get());
                         v["exterior"] = serde_json::json!(sides.is_some_and(|s| s.exterior()));
                         v["entrance"] = serde_json::json!(sides.and_then(|s| s.entrance()));
                         v["sides_from"] =
@@ -756,14 +801,14 @@ impl Topology {
                         v["status"] = serde_json::json!(statuses[n.id].0);
                         v["reason"] = serde_json::json!(statuses[n.id].1);
                     }
-                    NodeKind::Landing => {
-                        let c = &building.connections[n.index];
+                    NodeOf::Landing(c) => {
+                        let c = &building.connections[c];
                         v["connection"] = serde_json::json!(c.kind.label());
                         v["status"] = serde_json::json!(statuses[n.id].0);
                         v["reason"] = serde_json::json!(statuses[n.id].1);
                     }
-                    NodeKind::Zone => {
-                        let z = &building.floors[n.floor].zones[n.index];
+                    NodeOf::Zone(z) => {
+                        let z = &building.floors[n.floor].zones[z.get()];
                         v["long_name"] = serde_json::json!(z.long_name);
                         if let Some((sep, protocol)) = z.coordination {
                             v["coordination"] = serde_json::json!({
@@ -788,9 +833,9 @@ impl Topology {
                     "kind": e.kind,
                     "length_m": round6(e.length_m),
                 });
-                match through.kind {
-                    NodeKind::Door => {
-                        let d = &building.floors[through.floor].doors[through.index];
+                match through.of {
+                    NodeOf::Door(d) => {
+                        let d = &building.floors[through.floor].doors[d.get()];
                         v["via"] = serde_json::json!(d.id);
                         v["name"] = serde_json::json!(d.name);
                         v["clear_width_m"] = serde_json::json!(d.clear_width_m);
@@ -799,8 +844,8 @@ impl Topology {
                         v["reason"] = serde_json::json!(statuses[through.id].1);
                         v["roles"] = serde_json::json!(d.roles);
                     }
-                    NodeKind::Landing => {
-                        let c = &building.connections[through.index];
+                    NodeOf::Landing(c) => {
+                        let c = &building.connections[c];
                         v["via"] = serde_json::json!(c.id);
                         v["name"] = serde_json::json!(c.name);
                         v["connection"] = serde_json::json!(c.kind.label());
@@ -809,7 +854,7 @@ impl Topology {
                         v["status"] = serde_json::json!(statuses[through.id].0);
                         v["reason"] = serde_json::json!(statuses[through.id].1);
                     }
-                    NodeKind::Zone => {}
+                    NodeOf::Zone(_) => {}
                 }
                 v
             })
@@ -846,7 +891,7 @@ impl Topology {
     pub fn zone_labels(&self) -> BTreeMap<usize, String> {
         self.nodes
             .iter()
-            .filter(|n| n.kind == NodeKind::Zone)
+            .filter(|n| n.kind() == NodeKind::Zone)
             .map(|n| (n.id, n.label().to_string()))
             .collect()
     }

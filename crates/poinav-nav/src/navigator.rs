@@ -171,16 +171,16 @@ impl<'a> Navigator<'a> {
             .nodes
             .iter()
             .map(|n| {
-                let passable = match n.kind {
-                    NodeKind::Door => {
+                let passable = match n.door() {
+                    Some(d) => {
                         let outside = topology
-                            .door(n.floor, n.index)
+                            .door(n.floor, d.get())
                             .and_then(|d| d.outside_side());
-                        floors[n.floor].grid.door_passable(n.index, outside)
+                        floors[n.floor].grid.door_passable(d.get(), outside)
                     }
-                    _ => true,
+                    None => true,
                 };
-                if n.kind == NodeKind::Door {
+                if n.kind() == NodeKind::Door {
                     progress(Phase::Graph, n.id + 1, total);
                 }
                 passable
@@ -298,11 +298,11 @@ impl<'a> Navigator<'a> {
     pub fn closed_reason(&self, n: usize) -> String {
         let (s, why) = &self.status[n];
         let node = &self.topology.nodes[n];
-        let gave_up = node.kind == NodeKind::Door
-            && self
-                .topology
-                .door(node.floor, node.index)
-                .is_some_and(|d| d.gave_up);
+        let gave_up = node.door().is_some_and(|d| {
+            self.topology
+                .door(node.floor, d.get())
+                .is_some_and(|d| d.gave_up)
+        });
         if gave_up {
             format!(
                 "{} ({why}) but given up on: a size bound was passed, so it is taken as closed",
@@ -335,14 +335,14 @@ impl<'a> Navigator<'a> {
     /// three cells before one face to three cells beyond the other. Empty for other nodes.
     pub fn in_the_way(&self, n: usize) -> Vec<String> {
         let node = &self.topology.nodes[n];
-        if node.kind != NodeKind::Door {
+        let Some(d) = node.door() else {
             return Vec::new();
-        }
+        };
         let (floor, grid) = (
             &self.building.floors[node.floor],
             &self.floors[node.floor].grid,
         );
-        let Some(door) = grid.occupancy.doors.get(node.index) else {
+        let Some(door) = grid.occupancy.doors.get(d.get()) else {
             return Vec::new();
         };
         let (Some(frame), Some(half_width)) = (door.frame, door.passage_half_width_m) else {
@@ -354,7 +354,7 @@ impl<'a> Navigator<'a> {
             (half_width - lethal).max(res / 2.0),
             frame.half_depth + 3.0 * res,
         );
-        let own = &floor.doors[node.index].id;
+        let own = &floor.doors[d.get()].id;
         let mut found: Vec<(f64, String)> = floor
             .obstacles
             .iter()
