@@ -296,16 +296,10 @@ fn free_run(r: &Region, p: DVec2, dir: DVec2) -> f64 {
         let n = ring.len();
         for i in 0..n {
             let (a, b) = (ring[i], ring[(i + 1) % n]);
-            let e = b - a;
-            let denom = dir.perp_dot(e);
-            if denom.abs() < 1e-12 {
-                continue;
-            }
-            let w = a - p;
-            let t = w.perp_dot(e) / denom;
-            let u = w.perp_dot(dir) / denom;
-            if (0.0..=1.0).contains(&u) {
-                near = near.min(t.abs());
+            if let Some((t, u)) = poinav_geom::polygon::line_crossing(p, dir, a, b) {
+                if (0.0..=1.0).contains(&u) {
+                    near = near.min(t.abs());
+                }
             }
         }
     }

@@ -34,6 +34,19 @@ pub fn area_distance(ring: &[DVec2], p: DVec2) -> f64 {
     }
 }
 
+/// Where the line `p + t * dir` crosses the line through segment `a`-`b`: `(t, u)` with the
+/// crossing at `a + u * (b - a)` (on the segment for `u` in `[0, 1]`; ahead of `p` for
+/// `t >= 0`, in units of `dir`); `None` when they are parallel (`|dir x (b - a)| < 1e-12`).
+pub fn line_crossing(p: DVec2, dir: DVec2, a: DVec2, b: DVec2) -> Option<(f64, f64)> {
+    let e = b - a;
+    let den = dir.perp_dot(e);
+    if den.abs() < 1e-12 {
+        return None;
+    }
+    let w = a - p;
+    Some((w.perp_dot(e) / den, w.perp_dot(dir) / den))
+}
+
 /// True when the segments `a`-`b` and `c`-`d` cross or touch.
 fn segments_meet(a: DVec2, b: DVec2, c: DVec2, d: DVec2) -> bool {
     let side = |p: DVec2, q: DVec2, r: DVec2| (q - p).perp_dot(r - p);
@@ -87,6 +100,21 @@ mod tests {
         assert_eq!(segment_distance(a, b, DVec2::new(1.0, 3.0)), 3.0);
         assert_eq!(segment_distance(a, b, DVec2::new(7.0, 4.0)), 5.0);
         assert_eq!(segment_distance(a, a, DVec2::new(3.0, 4.0)), 5.0);
+    }
+
+    #[test]
+    fn a_line_crosses_a_segment_where_it_should() {
+        let (a, b) = (DVec2::new(2.0, -1.0), DVec2::new(2.0, 3.0));
+        assert_eq!(
+            line_crossing(DVec2::ZERO, DVec2::new(0.5, 0.0), a, b),
+            Some((4.0, 0.25))
+        );
+        // Behind the start: t < 0; beyond the segment's end: u > 1.
+        assert_eq!(
+            line_crossing(DVec2::new(4.0, 5.0), DVec2::X, a, b),
+            Some((-2.0, 1.5))
+        );
+        assert_eq!(line_crossing(DVec2::ZERO, DVec2::Y, a, b), None);
     }
 
     #[test]

@@ -7,7 +7,7 @@
 //! - [`measure`]: signed area, centroid, bounds (of a ring or any points), containment (even-odd, or with the boundary),
 //!   crossings of a horizontal line, a point inside.
 //! - [`distance`]: distances from a point to a segment, a ring's boundary, a ring as an area,
-//!   and between two rings.
+//!   and between two rings; where a line crosses a segment's line.
 //! - [`clean`]: rings without repeated points, counter-clockwise.
 //! - [`hull`]: convex hulls and minimum-area enclosing rectangles ([`Rectangle`]).
 //! - [`frame`]: the frame of a passage ring ([`PassageFrame`]).
@@ -20,7 +20,9 @@ pub mod measure;
 pub mod ring;
 
 pub use clean::{clean, without_repeats};
-pub use distance::{area_distance, boundary_distance, ring_distance, segment_distance};
+pub use distance::{
+    area_distance, boundary_distance, line_crossing, ring_distance, segment_distance,
+};
 pub use frame::PassageFrame;
 pub use hull::{convex_hull, min_area_rectangle, Rectangle};
 pub use measure::{
