@@ -6,6 +6,7 @@ use glam::DVec2;
 use crate::measure::contains;
 
 /// Distance from `p` to the segment `a`-`b`.
+#[inline]
 pub fn segment_distance(a: DVec2, b: DVec2, p: DVec2) -> f64 {
     let ab = b - a;
     let len2 = ab.length_squared();
@@ -18,6 +19,7 @@ pub fn segment_distance(a: DVec2, b: DVec2, p: DVec2) -> f64 {
 }
 
 /// Distance from `p` to the ring's boundary (0 on the boundary, infinite for an empty ring).
+#[inline]
 pub fn boundary_distance(ring: &[DVec2], p: DVec2) -> f64 {
     let n = ring.len();
     (0..n)
@@ -37,6 +39,7 @@ pub fn area_distance(ring: &[DVec2], p: DVec2) -> f64 {
 /// Where the line `p + t * dir` crosses the line through segment `a`-`b`: `(t, u)` with the
 /// crossing at `a + u * (b - a)` (on the segment for `u` in `[0, 1]`; ahead of `p` for
 /// `t >= 0`, in units of `dir`); `None` when they are parallel (`|dir x (b - a)| < 1e-12`).
+#[inline]
 pub fn line_crossing(p: DVec2, dir: DVec2, a: DVec2, b: DVec2) -> Option<(f64, f64)> {
     let e = b - a;
     let den = dir.perp_dot(e);

@@ -61,6 +61,7 @@ pub fn centroid_about(ring: &[DVec2], o: DVec2) -> Option<DVec2> {
 
 /// True when `p` is inside `ring` (even-odd rule; a point exactly on an edge may go either
 /// way). [`contains_closed`] counts the boundary in.
+#[inline]
 pub fn contains(ring: &[DVec2], p: DVec2) -> bool {
     let n = ring.len();
     if n < 3 {
