@@ -14,9 +14,10 @@ use std::path::{Path, PathBuf};
 const ALLOWED: &[(&str, &[&str])] = &[
     ("poinav-io", &[]),
     ("poinav-ifc", &["poinav-io"]),
-    ("poinav-geom", &["poinav-ifc"]),
+    ("poinav-plane", &[]),
+    ("poinav-geom", &["poinav-ifc", "poinav-plane"]),
     ("poinav-roles", &[]),
-    ("poinav-floor", &["poinav-roles"]),
+    ("poinav-floor", &["poinav-roles", "poinav-plane"]),
     ("poinav-poi", &["poinav-ifc", "poinav-geom", "poinav-roles"]),
     ("poinav-author", &["poinav-ifc"]),
     ("poinav-nav", &["poinav-io", "poinav-roles", "poinav-floor"]),

@@ -110,7 +110,7 @@ mod tests {
     use poinav_nav::polygon::rect;
     use poinav_nav::FloorZone;
 
-    fn zone(id: &str, ring: Vec<DVec2>) -> FloorZone {
+    fn zone(id: &str, ring: poinav_nav::Ring) -> FloorZone {
         FloorZone {
             id: id.into(),
             name: Some(id.into()),

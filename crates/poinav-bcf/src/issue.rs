@@ -4,7 +4,7 @@
 
 use glam::DVec2;
 use poinav_nav::audit::{DoorAudit, ProfileAudit, SpaceAudit, TransitionAudit};
-use poinav_nav::{AuditReport, Building, DoorFrame, ObstacleKind};
+use poinav_nav::{AuditReport, Building, DoorFrame, ObstacleKind, Ring};
 use poinav_poi::AccessibilityStatus;
 
 use crate::guid;
@@ -37,7 +37,7 @@ pub enum Focus {
     /// A door: its passage ring, centre and the unit normal across it.
     Door {
         /// Passage ring.
-        ring: Vec<DVec2>,
+        ring: Ring,
         /// Centre.
         center: DVec2,
         /// Unit normal (direction of travel).
@@ -51,12 +51,12 @@ pub enum Focus {
         /// What to look at.
         target: DVec2,
         /// The element's outline rings on that storey (may be empty).
-        rings: Vec<Vec<DVec2>>,
+        rings: Vec<Ring>,
     },
     /// A space: its outline.
     Space {
         /// Outline ring.
-        ring: Vec<DVec2>,
+        ring: Ring,
     },
 }
 
@@ -258,7 +258,7 @@ fn transition_issue(
     let floor = landing.map(|l| l.floor);
     let focus = landing.map(|l| {
         let f = &building.floors[l.floor];
-        let mut rings: Vec<Vec<DVec2>> = f
+        let mut rings: Vec<Ring> = f
             .obstacles
             .iter()
             .filter(|o| o.id == t.id)
@@ -365,15 +365,12 @@ fn capitalised(word: &str) -> String {
 }
 
 /// The middle of the bounding box of `rings`.
-pub fn rings_center(rings: &[Vec<DVec2>]) -> Option<DVec2> {
+pub fn rings_center(rings: &[Ring]) -> Option<DVec2> {
     let (lo, hi) = rings_bounds(rings)?;
     Some((lo + hi) / 2.0)
 }
 
 /// The bounding box of `rings`.
-pub fn rings_bounds(rings: &[Vec<DVec2>]) -> Option<(DVec2, DVec2)> {
-    rings.iter().flatten().fold(None, |acc, p| match acc {
-        None => Some((*p, *p)),
-        Some((lo, hi)) => Some((lo.min(*p), hi.max(*p))),
-    })
+pub fn rings_bounds(rings: &[Ring]) -> Option<(DVec2, DVec2)> {
+    poinav_nav::polygon::bounds_of(rings.iter().flatten())
 }

@@ -166,7 +166,7 @@ pub fn render(
         let end = eye + dir.normalize_or_zero() * 1.2;
         let m = DVec2::splat(window.scale);
         each_pixel_in(&window, eye.min(end) - m, eye.max(end) + m, |i, p| {
-            if polygon::segment_distance(p, eye, end) < window.scale {
+            if polygon::segment_distance(eye, end, p) < window.scale {
                 px[i] = CAMERA;
             }
         });
@@ -233,7 +233,7 @@ mod tests {
     #[test]
     fn a_door_window_is_eight_metres_wide_centred_on_it_north_up() {
         let focus = Focus::Door {
-            ring: vec![],
+            ring: Default::default(),
             center: DVec2::new(10.0, 20.0),
             normal: DVec2::X,
         };
@@ -249,12 +249,7 @@ mod tests {
 
     #[test]
     fn a_large_space_widens_the_window() {
-        let ring = vec![
-            DVec2::new(0.0, 0.0),
-            DVec2::new(20.0, 0.0),
-            DVec2::new(20.0, 5.0),
-            DVec2::new(0.0, 5.0),
-        ];
+        let ring = poinav_nav::polygon::rect(0.0, 0.0, 20.0, 5.0);
         let w = Window::around(&Focus::Space { ring });
         // 20 m plus a metre each side.
         assert!((w.scale * f64::from(WIDTH) - 22.0).abs() < 1e-9, "{w:?}");

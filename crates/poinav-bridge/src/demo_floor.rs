@@ -10,7 +10,7 @@ use glam::DVec2;
 use poinav_author::DemoBuilding;
 use poinav_ifc::{units, Model};
 use poinav_nav::polygon::rect;
-use poinav_nav::{Floor, FloorDoor, FloorObstacle, FloorZone, ObstacleKind};
+use poinav_nav::{Floor, FloorDoor, FloorObstacle, FloorZone, ObstacleKind, Ring};
 use poinav_poi::{Classification, Classified};
 use poinav_sim::scenario::DemoParams;
 
@@ -76,7 +76,7 @@ pub fn demo_floor(
     let (lx, ly) = (spec.length_m(), spec.depth_m());
     let (c0, c1) = (layout.corridor_min[1], layout.corridor_max[1]);
     let mut obstacles = Vec::new();
-    let mut wall = |name: &str, rings: Vec<Vec<DVec2>>| -> Result<(), BridgeError> {
+    let mut wall = |name: &str, rings: Vec<Ring>| -> Result<(), BridgeError> {
         let gid = id("IfcWall", name)?;
         let c = by_gid.get(gid.as_str()).copied();
         obstacles.push(FloorObstacle {

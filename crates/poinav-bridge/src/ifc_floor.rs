@@ -9,7 +9,7 @@ use std::collections::{BTreeMap, HashMap};
 use poinav_geom::{FloorPlan, PlanItemKind, PlanSource};
 use poinav_ifc::Model;
 use poinav_nav::door_status::Block;
-use poinav_nav::{ElementId, Floor, FloorDoor, FloorObstacle, FloorZone, ObstacleKind};
+use poinav_nav::{ElementId, Floor, FloorDoor, FloorObstacle, FloorZone, ObstacleKind, Ring};
 use poinav_poi::{AccessibilityKind, AccessibilityStatus, Classification, Classified, Role};
 
 use crate::error::BridgeError;
@@ -122,8 +122,8 @@ pub(crate) fn floor_from_plan(
         let rings = || {
             item.regions
                 .iter()
-                .map(|r| r.outer.clone())
-                .filter(|r| r.len() >= 3)
+                .filter(|r| r.outer.len() >= 3)
+                .map(|r| Ring::from(r.outer.clone()))
                 .collect::<Vec<_>>()
         };
         let kind = match item.kind {
@@ -146,7 +146,7 @@ pub(crate) fn floor_from_plan(
                         id: item.global_id.as_str().into(),
                         name: item.name.clone(),
                         long_name: item.long_name.clone(),
-                        ring: region.outer.clone(),
+                        ring: region.outer.clone().into(),
                         roles: roles(c),
                         coordination: c
                             .and_then(|c| c.coordination.as_ref())
@@ -171,7 +171,7 @@ pub(crate) fn floor_from_plan(
         }
     }
     for door in &plan.doors {
-        let Some(ring) = door.passage().map(|r| r.outer) else {
+        let Some(ring) = door.passage().map(|r| Ring::from(r.outer)) else {
             continue;
         };
         let c = by_guid.get(door.global_id.as_str()).copied();
@@ -193,7 +193,7 @@ pub(crate) fn floor_from_plan(
     // Doorways (openings no door fills): open whatever the model says, classified by their own
     // width (unknown unless a positive number).
     for opening in &plan.openings {
-        let Some(ring) = opening.passage().map(|r| r.outer) else {
+        let Some(ring) = opening.passage().map(|r| Ring::from(r.outer)) else {
             continue;
         };
         let c = by_guid.get(opening.global_id.as_str()).copied();
@@ -298,7 +298,7 @@ mod tests {
         FloorDoor {
             id: "1Door000000000000000007".into(),
             name: None,
-            ring: vec![],
+            ring: Ring::default(),
             center: glam::DVec2::ZERO,
             clear_width_m: 1.0,
             classified_width_m: facts.0,

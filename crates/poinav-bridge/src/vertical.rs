@@ -22,7 +22,9 @@ use glam::{DVec2, DVec3};
 use poinav_geom::region::{self, Region};
 use poinav_geom::{polygon, ElementMesh, Footprint, ModelMeshes};
 use poinav_ifc::{Entity, EntityId, Model};
-use poinav_nav::{ConnectionKind, Floor, FloorObstacle, Landing, ObstacleKind, VerticalConnection};
+use poinav_nav::{
+    ConnectionKind, Floor, FloorObstacle, Landing, ObstacleKind, Ring, VerticalConnection,
+};
 use regex::Regex;
 
 use crate::dropped::{Dropped, DroppedKind};
@@ -180,7 +182,7 @@ fn stairs_and_ramps(
                         .flat_map(|m| poinav_geom::section::mesh_shadow(&m.mesh))
                         .collect::<Vec<_>>(),
                 );
-                let rings: Vec<Vec<DVec2>> = shadow.into_iter().map(|r| r.outer).collect();
+                let rings: Vec<Ring> = shadow.into_iter().map(|r| Ring::from(r.outer)).collect();
                 if !rings.is_empty() {
                     for l in c.landings.iter().skip(1) {
                         out.shadows.push((
@@ -395,16 +397,18 @@ fn free(floor: &Floor, p: DVec2, clearance_m: f64, except: &[&str]) -> bool {
     let in_zone = floor
         .zones
         .iter()
-        .any(|z| !except.contains(&z.id.as_str()) && polygon::contains(&z.ring, p));
+        .any(|z| !except.contains(&z.id.as_str()) && polygon::contains_closed(&z.ring, p));
     in_zone
         && floor.obstacles.iter().all(|o| {
             o.rings.iter().all(|r| {
-                let (lo, hi) = polygon::bounds(r);
+                let Some((lo, hi)) = polygon::bounds(r) else {
+                    return true;
+                };
                 let c = DVec2::splat(clearance_m);
                 if p.cmplt(lo - c).any() || p.cmpgt(hi + c).any() {
                     return true;
                 }
-                !polygon::contains(r, p) && polygon::distance_to_boundary(r, p) >= clearance_m
+                !polygon::contains_closed(r, p) && polygon::boundary_distance(r, p) >= clearance_m
             })
         })
 }
@@ -433,7 +437,7 @@ fn landing_off(
             return Some(p);
         }
     }
-    let base = (from - polygon::centroid(footprint))
+    let base = (from - polygon::centroid(footprint).unwrap_or_default())
         .try_normalize()
         .unwrap_or(DVec2::X);
     search_out(
@@ -458,7 +462,7 @@ fn unobstructed(floor: &Floor, a: DVec2, b: DVec2) -> bool {
             .obstacles
             .iter()
             .filter(|o| o.kind == ObstacleKind::Structure)
-            .all(|o| o.rings.iter().all(|r| !polygon::contains(r, p)))
+            .all(|o| o.rings.iter().all(|r| !polygon::contains_closed(r, p)))
     })
 }
 
@@ -491,8 +495,8 @@ fn search_out(
     straight: bool,
 ) -> Option<DVec2> {
     let outside = |p: DVec2| {
-        !polygon::contains(footprint, p)
-            && polygon::distance_to_boundary(footprint, p) >= FOOTPRINT_MARGIN_M
+        !polygon::contains_closed(footprint, p)
+            && polygon::boundary_distance(footprint, p) >= FOOTPRINT_MARGIN_M
     };
     for &a in turns {
         let d = DVec2::from_angle(a).rotate(base);
@@ -526,7 +530,7 @@ fn landing_beside(
     clearance_m: f64,
     except: &[&str],
 ) -> Option<DVec2> {
-    let c = polygon::centroid(footprint);
+    let c = polygon::centroid(footprint).unwrap_or_default();
     let base = (from - c).try_normalize().unwrap_or(DVec2::X);
     search_out(
         floor,
@@ -684,15 +688,15 @@ fn root(parent: &[usize], mut i: usize) -> usize {
 /// door, is left out), else its centroid.
 fn lift_landing(floor: &Floor, u: &LiftUnit, clearance_m: f64) -> Option<(DVec2, Option<f64>)> {
     let ring = &u.hull.polygon;
-    let c = polygon::centroid(ring);
+    let c = polygon::centroid(ring).unwrap_or_default();
     let door = floor
         .doors
         .iter()
         .map(|d| {
-            let dist = if polygon::contains(ring, d.center) {
+            let dist = if polygon::contains_closed(ring, d.center) {
                 0.0
             } else {
-                polygon::distance_to_boundary(ring, d.center)
+                polygon::boundary_distance(ring, d.center)
             };
             (dist, d)
         })
@@ -712,14 +716,14 @@ fn lift_landing(floor: &Floor, u: &LiftUnit, clearance_m: f64) -> Option<(DVec2,
         floor
             .zones
             .iter()
-            .filter(|z| z.id != u.id && polygon::contains(&z.ring, p))
+            .filter(|z| z.id != u.id && polygon::contains_closed(&z.ring, p))
             .map(|z| {
                 floor
                     .doors
                     .iter()
                     .filter(|d| {
-                        polygon::contains(&z.ring, d.center)
-                            || polygon::distance_to_boundary(&z.ring, d.center) <= 0.5
+                        polygon::contains_closed(&z.ring, d.center)
+                            || polygon::boundary_distance(&z.ring, d.center) <= 0.5
                     })
                     .count()
             })
@@ -779,12 +783,7 @@ mod tests {
                     id: format!("z{i}").into(),
                     name: None,
                     long_name: None,
-                    ring: vec![
-                        DVec2::new(-5.0, -5.0),
-                        DVec2::new(20.0, -5.0),
-                        DVec2::new(20.0, 10.0),
-                        DVec2::new(-5.0, 10.0),
-                    ],
+                    ring: polygon::rect(-5.0, -5.0, 20.0, 10.0),
                     roles: vec![],
                     coordination: None,
                 }],

@@ -77,7 +77,12 @@ fn door_named<'a>(nav: &'a Navigator<'_>, name: &str) -> &'a poinav_nav::graph::
     nav.topology
         .doors
         .iter()
-        .find(|d| nav.building.floors[d.floor].doors[d.door].name.as_deref() == Some(name))
+        .find(|d| {
+            nav.building.floors[d.floor].doors[d.door.get()]
+                .name
+                .as_deref()
+                == Some(name)
+        })
         .unwrap_or_else(|| panic!("no door {name}"))
 }
 
@@ -86,7 +91,7 @@ fn zone_names(nav: &Navigator<'_>, d: &poinav_nav::graph::DoorSides) -> Vec<Stri
         .zones
         .iter()
         .map(|z| match z {
-            Some(z) => nav.building.floors[d.floor].zones[*z]
+            Some(z) => nav.building.floors[d.floor].zones[z.get()]
                 .name
                 .clone()
                 .unwrap_or_default(),
@@ -138,7 +143,7 @@ fn the_test_house_tells_the_truth() {
     for (l, zone) in stair.landings.iter().zip(["Hall", "Landing hall"]) {
         let f = &b.floors[l.floor];
         let z = zone_at(f, l.point).expect("a landing is in a zone");
-        assert_eq!(f.zones[z].name.as_deref(), Some(zone));
+        assert_eq!(f.zones[z.get()].name.as_deref(), Some(zone));
         let g = &nav.floors[l.floor].grid;
         let i = g.occupancy.cell_of(l.point).unwrap();
         assert_eq!(g.occupancy.cells[i], CellState::Free, "{l:?}");
@@ -153,7 +158,7 @@ fn the_test_house_tells_the_truth() {
         .iter()
         .filter(|d| d.exterior())
         .map(|d| {
-            b.floors[d.floor].doors[d.door]
+            b.floors[d.floor].doors[d.door.get()]
                 .name
                 .as_deref()
                 .unwrap_or("?")
@@ -236,18 +241,18 @@ fn check_properties(name: &str, file: &Path, b: &Building, nav: &Navigator<'_>) 
         r
     };
     for (n, node) in t.nodes.iter().enumerate() {
-        if node.kind != NodeKind::Zone || !reachable[n] {
+        if node.kind() != NodeKind::Zone || !reachable[n] {
             continue;
         }
         // A space that is a lift itself is entered at its landings.
-        let zone = &b.floors[node.floor].zones[node.index];
+        let zone = &b.floors[node.floor].zones[node.zone().unwrap().get()];
         let shaft = b.connections.iter().position(|c| c.id == zone.id);
         let entered = shaft.is_some_and(|ci| {
             t.landing_nodes[ci].iter().any(|&l| {
                 nav.open[l]
                     && t.adjacency[l]
                         .iter()
-                        .any(|&(_, w)| t.nodes[w].kind == NodeKind::Zone && reachable[w])
+                        .any(|&(_, w)| t.nodes[w].kind() == NodeKind::Zone && reachable[w])
             })
         });
         let joined = entered
@@ -255,20 +260,24 @@ fn check_properties(name: &str, file: &Path, b: &Building, nav: &Navigator<'_>) 
                 if !nav.open[v] {
                     return false;
                 }
-                match t.nodes[v].kind {
+                match t.nodes[v].kind() {
                     NodeKind::Zone => reachable[v],
                     NodeKind::Door => {
-                        let sides = t.door(t.nodes[v].floor, t.nodes[v].index).unwrap();
+                        let sides = t
+                            .door(t.nodes[v].floor, t.nodes[v].door().unwrap().get())
+                            .unwrap();
                         sides.exterior()
                             || t.adjacency[v].iter().any(|&(_, w)| w != n && reachable[w])
                     }
-                    NodeKind::Landing => t.landing_nodes[t.nodes[v].index].iter().any(|&l| {
-                        l != v
-                            && nav.open[l]
-                            && t.adjacency[l]
-                                .iter()
-                                .any(|&(_, w)| t.nodes[w].kind == NodeKind::Zone && reachable[w])
-                    }),
+                    NodeKind::Landing => t.landing_nodes[t.nodes[v].connection().unwrap()]
+                        .iter()
+                        .any(|&l| {
+                            l != v
+                                && nav.open[l]
+                                && t.adjacency[l].iter().any(|&(_, w)| {
+                                    t.nodes[w].kind() == NodeKind::Zone && reachable[w]
+                                })
+                        }),
                 }
             });
         if !joined {
@@ -282,7 +291,7 @@ fn check_properties(name: &str, file: &Path, b: &Building, nav: &Navigator<'_>) 
     // walled in.
     for d in t.doors.iter().filter(|d| d.exterior()) {
         let floor = &b.floors[d.floor];
-        let label = format!("{name}: entrance {:?}", floor.doors[d.door].name);
+        let label = format!("{name}: entrance {:?}", floor.doors[d.door.get()].name);
         let kind = if b.at_ground(d.floor) {
             Entrance::Ground
         } else {
@@ -295,7 +304,7 @@ fn check_properties(name: &str, file: &Path, b: &Building, nav: &Navigator<'_>) 
                 d.entrance()
             ));
         }
-        if let (Some(f), Some(side)) = (floor.door_frame(d.door), d.outside_side()) {
+        if let (Some(f), Some(side)) = (floor.door_frame(d.door.get()), d.outside_side()) {
             let p = f.center + f.normal * side * (f.half_depth + 0.3);
             if zone_at(floor, p).is_some() {
                 problems.push(format!("{label} has a space beyond its outside face"));

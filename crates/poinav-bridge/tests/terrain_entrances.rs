@@ -31,7 +31,9 @@ fn entrances(nav: &Navigator<'_>) -> Vec<(String, Option<Entrance>)> {
         .iter()
         .filter(|d| d.zones.iter().filter(|z| z.is_none()).count() == 1)
         .map(|d| {
-            let name = nav.building.floors[d.floor].doors[d.door].name.clone();
+            let name = nav.building.floors[d.floor].doors[d.door.get()]
+                .name
+                .clone();
             (name.unwrap_or_default(), d.entrance())
         })
         .collect()

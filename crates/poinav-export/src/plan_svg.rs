@@ -296,16 +296,10 @@ fn free_run(r: &Region, p: DVec2, dir: DVec2) -> f64 {
         let n = ring.len();
         for i in 0..n {
             let (a, b) = (ring[i], ring[(i + 1) % n]);
-            let e = b - a;
-            let denom = dir.perp_dot(e);
-            if denom.abs() < 1e-12 {
-                continue;
-            }
-            let w = a - p;
-            let t = w.perp_dot(e) / denom;
-            let u = w.perp_dot(dir) / denom;
-            if (0.0..=1.0).contains(&u) {
-                near = near.min(t.abs());
+            if let Some((t, u)) = poinav_geom::polygon::line_crossing(p, dir, a, b) {
+                if (0.0..=1.0).contains(&u) {
+                    near = near.min(t.abs());
+                }
             }
         }
     }
@@ -457,16 +451,10 @@ fn path(regions: &[Region]) -> String {
     d.trim_end().to_string()
 }
 
-/// A number to the millimetre, without trailing zeros.
+/// A number to the millimetre, without trailing zeros (`poinav_io::number::fixed`, as the
+/// simulator's traces and plots write theirs).
 fn num(v: f64) -> String {
-    let v = if v.abs() < 5e-4 { 0.0 } else { v };
-    let t = format!("{v:.3}");
-    let t = t.trim_end_matches('0').trim_end_matches('.');
-    if t == "-0" {
-        "0".into()
-    } else {
-        t.to_string()
-    }
+    poinav_io::number::fixed(v, 3)
 }
 
 #[cfg(test)]

@@ -235,7 +235,7 @@ mod tests {
         FloorDoor {
             id: "d".into(),
             name: Some("Door".into()),
-            ring: vec![],
+            ring: Default::default(),
             center: DVec2::ZERO,
             clear_width_m: width,
             classified_width_m: Some(width),

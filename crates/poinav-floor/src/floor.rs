@@ -8,7 +8,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::door_status::Block;
 use crate::id::ElementId;
-use crate::polygon::PassageFrame;
+use poinav_plane::{PassageFrame, Ring};
 
 /// What an obstacle is, for maps and sensors.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -38,7 +38,7 @@ pub struct FloorObstacle {
     /// Kind.
     pub kind: ObstacleKind,
     /// Outline rings, counter-clockwise, world metres (several for split elements).
-    pub rings: Vec<Vec<DVec2>>,
+    pub rings: Vec<Ring>,
     /// POI roles (primary and conditional).
     pub roles: Vec<Role>,
 }
@@ -51,7 +51,7 @@ pub struct FloorDoor {
     /// Name.
     pub name: Option<String>,
     /// The passage region (the opening's footprint), world metres.
-    pub ring: Vec<DVec2>,
+    pub ring: Ring,
     /// Centre of the passage.
     pub center: DVec2,
     /// Clear width in metres, geometric: the passage's in plan.
@@ -94,7 +94,7 @@ pub struct FloorZone {
     /// LongName.
     pub long_name: Option<String>,
     /// Outline, counter-clockwise, world metres.
-    pub ring: Vec<DVec2>,
+    pub ring: Ring,
     /// POI roles (Destination, A-3 + C-1 for corridors, B-1 for hazards).
     pub roles: Vec<Role>,
     /// MinInterRobotSeparation and CoordinationProtocol of a C-1 zone.
@@ -133,16 +133,13 @@ impl FloorDoor {
 impl Floor {
     /// Bounding box of everything on the floor (min, max); `None` when empty.
     pub fn bounds(&self) -> Option<(DVec2, DVec2)> {
-        let points = self
-            .obstacles
-            .iter()
-            .flat_map(|o| o.rings.iter().flatten())
-            .chain(self.zones.iter().flat_map(|z| z.ring.iter()))
-            .chain(self.doors.iter().flat_map(|d| d.ring.iter()));
-        points.fold(None, |acc, p| match acc {
-            None => Some((*p, *p)),
-            Some((lo, hi)) => Some((lo.min(*p), hi.max(*p))),
-        })
+        poinav_plane::bounds_of(
+            self.obstacles
+                .iter()
+                .flat_map(|o| o.rings.iter().flatten())
+                .chain(self.zones.iter().flat_map(|z| z.ring.iter()))
+                .chain(self.doors.iter().flat_map(|d| d.ring.iter())),
+        )
     }
 
     /// The zone with this name (Name or LongName).

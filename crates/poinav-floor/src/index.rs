@@ -1,7 +1,8 @@
 //! Typed indices into a floor's lists ([`ZoneIdx`] into `Floor::zones`, [`DoorIdx`] into
-//! `Floor::doors`): `Option<ZoneIdx>` says "no zone" where a bare `u32` needed a sentinel, and
-//! takes the same 4 bytes (the index is stored plus one in a `NonZeroU32`, so `None` is the
-//! niche), which matters where a grid holds one per cell.
+//! `Floor::doors`, [`ObstacleIdx`] into `Floor::obstacles`), serialised as the plain index:
+//! `Option<ZoneIdx>` says "no zone" where a bare `u32` needed a sentinel, and takes the same 4
+//! bytes (the index is stored plus one in a `NonZeroU32`, so `None` is the niche), which
+//! matters where a grid holds one per cell.
 
 use std::fmt;
 use std::num::NonZeroU32;
@@ -43,6 +44,13 @@ macro_rules! index_type {
                 write!(f, "{}", self.get())
             }
         }
+
+        /// Serialised as the plain index, as a `usize` is.
+        impl serde::Serialize for $name {
+            fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+                s.serialize_u64(self.get() as u64)
+            }
+        }
     };
 }
 
@@ -55,6 +63,11 @@ index_type!(
     /// An index into `Floor::doors`.
     DoorIdx,
     "door"
+);
+index_type!(
+    /// An index into `Floor::obstacles`.
+    ObstacleIdx,
+    "obstacle"
 );
 
 #[cfg(test)]
@@ -76,6 +89,13 @@ mod tests {
             format!("{:?} {}", DoorIdx::new(7), ZoneIdx::new(2)),
             "DoorIdx(7) 2"
         );
+        assert_eq!(std::mem::size_of::<Option<ObstacleIdx>>(), 4);
+        // Serialised as a usize is: the index itself.
+        assert_eq!(
+            serde_json::to_string(&[Some(ZoneIdx::new(0)), None]).unwrap(),
+            serde_json::to_string(&[Some(0usize), None]).unwrap()
+        );
+        assert_eq!(serde_json::to_string(&DoorIdx::new(12)).unwrap(), "12");
     }
 
     #[test]

@@ -12,8 +12,9 @@
 //! - [`index`]: typed indices into a floor's zones and doors ([`ZoneIdx`], [`DoorIdx`]), with
 //!   `Option` for none.
 //! - [`level`]: each storey's walking level and which storeys are at ground level.
-//! - [`polygon`]: plane geometry on rings (`&[DVec2]`, the ring first): containment,
-//!   distances, areas, interior points, passage frames.
+//! - [`polygon`]: plane geometry on rings (`poinav-plane`, re-exported; the ring first):
+//!   containment, distances, areas, interior points, passage frames; [`Ring`], the type of
+//!   every ring on a floor.
 
 pub mod building;
 pub mod door_status;
@@ -21,11 +22,14 @@ pub mod floor;
 pub mod id;
 pub mod index;
 pub mod level;
-pub mod polygon;
+
+/// Plane geometry on rings: `poinav-plane`, re-exported so a floor's users need not name it.
+pub use poinav_plane as polygon;
+pub use poinav_plane::Ring;
 
 pub use building::{Building, ConnectionKind, Landing, VerticalConnection};
 pub use door_status::{classified_status, door_status, Block};
 pub use floor::{Floor, FloorDoor, FloorObstacle, FloorZone, ObstacleKind};
 pub use id::ElementId;
-pub use index::{DoorIdx, ZoneIdx};
+pub use index::{DoorIdx, ObstacleIdx, ZoneIdx};
 pub use level::{Entrance, FloorLevel, LevelSource};

@@ -174,7 +174,7 @@ fn cutter(host: (DVec3, DVec3), hs: &HalfSpace) -> Option<Solid> {
     }
     // The polygon grows by PRISM_MARGIN on every side, so that prism faces lying in faces of
     // the host (a wall clipped over its whole length) cut through cleanly.
-    let (plo, phi) = polygon::bounds(&prism.polygon);
+    let (plo, phi) = polygon::bounds(&prism.polygon).unwrap_or_default();
     let centre = (plo + phi) / 2.0;
     let half = ((phi - plo) / 2.0).max(DVec2::splat(PRISM_MARGIN));
     let scale = (half + PRISM_MARGIN) / half;

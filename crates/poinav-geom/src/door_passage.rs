@@ -60,13 +60,14 @@ impl DoorPassage {
     /// The rectangle centred on the opening reaching `half_width` along and `half_depth`
     /// across it, counter-clockwise.
     pub fn rectangle(&self, half_width: f64, half_depth: f64) -> Vec<DVec2> {
-        let (u, v) = (self.along * half_width, self.across * half_depth);
-        vec![
-            self.center - u - v,
-            self.center + u - v,
-            self.center + u + v,
-            self.center - u + v,
-        ]
+        let frame = polygon::PassageFrame {
+            center: self.center,
+            axis: self.along,
+            normal: self.across,
+            half_width,
+            half_depth,
+        };
+        frame.rectangle(half_width, half_depth).into_vec()
     }
 
     /// The clear passage: the clear width across the opening's depth.

@@ -151,7 +151,10 @@ pub fn floor_voids<'m>(
         let c = hole.centroid();
         let k = at_level
             .iter()
-            .position(|(_, rs)| rs.iter().any(|r| crate::polygon::contains(&r.outer, c)))
+            .position(|(_, rs)| {
+                rs.iter()
+                    .any(|r| crate::polygon::contains_closed(&r.outer, c))
+            })
             .unwrap_or(0);
         let slab = at_level[k].0;
         match out.iter_mut().find(|(e, _)| e.id() == slab.id()) {

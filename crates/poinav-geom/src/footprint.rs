@@ -59,7 +59,7 @@ impl Footprint {
 
     /// The area centroid of the outline.
     pub fn centroid(&self) -> DVec2 {
-        polygon::centroid(&self.polygon)
+        polygon::centroid(&self.polygon).unwrap_or_default()
     }
 
     /// The minimum-area rectangle around the outline (rotating calipers on its convex hull).
@@ -79,7 +79,7 @@ impl Footprint {
 
     /// True when `point` (world XY) is inside the outline or on its boundary.
     pub fn contains(&self, point: DVec2) -> bool {
-        polygon::contains(&self.polygon, point)
+        polygon::contains_closed(&self.polygon, point)
     }
 
     /// Distance from `point` (world XY) to the outline: 0 inside, else to the nearest edge.
@@ -87,7 +87,7 @@ impl Footprint {
         if self.contains(point) {
             0.0
         } else {
-            polygon::distance_to_boundary(&self.polygon, point)
+            polygon::boundary_distance(&self.polygon, point)
         }
     }
 }

@@ -67,7 +67,8 @@ mod parameterized_profile;
 pub mod part_hulls;
 pub mod placement;
 pub mod plan_kind;
-pub mod polygon;
+/// Plane geometry on rings: `poinav-plane`, under the name the geometry has always used.
+pub use poinav_plane as polygon;
 pub mod profile;
 pub mod progress;
 pub mod region;

@@ -229,7 +229,7 @@ mod tests {
         let a = center_line_area(m.entity(EntityId(5)).unwrap(), &mm).unwrap();
         // 7 m of centre line, 0.2 m thick: mitred corners keep the area exact.
         assert!((a.area() - 1.4).abs() < 1e-9, "{}", a.area());
-        let (lo, hi) = polygon::bounds(&a.outer);
+        let (lo, hi) = polygon::bounds(&a.outer).unwrap();
         assert!(lo.distance(DVec2::new(0.0, -0.1)) < 1e-9, "{lo}");
         assert!(hi.distance(DVec2::new(4.1, 3.0)) < 1e-9, "{hi}");
         // A closed triangle of centre lines: a ring whose area is its perimeter (12 m) times

@@ -314,7 +314,7 @@ mod tests {
         let (outer, holes) = shape(m.entity(EntityId(id)).unwrap(), 1.0).unwrap();
         let outer = clean(outer).expect("a simple outer boundary");
         let holes: f64 = holes.iter().map(|h| signed_area(h).abs()).sum();
-        let (lo, hi) = bounds(&outer);
+        let (lo, hi) = bounds(&outer).unwrap();
         (signed_area(&outer) - holes, lo, hi)
     }
 

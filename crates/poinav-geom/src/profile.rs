@@ -229,7 +229,7 @@ mod tests {
         assert_eq!(p.len(), 4);
         assert!((polygon::signed_area(&p) - 8.0).abs() < 1e-12);
         // Rotated by 90 degrees: 4 m along y, 2 m along x, centred on (1, 0.5).
-        let (min, max) = polygon::bounds(&p);
+        let (min, max) = polygon::bounds(&p).unwrap();
         assert!((min - DVec2::new(0.0, -1.5)).length() < 1e-12, "{min}");
         assert!((max - DVec2::new(2.0, 2.5)).length() < 1e-12, "{max}");
     }

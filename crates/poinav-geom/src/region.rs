@@ -47,11 +47,11 @@ impl Region {
 
     /// True when `p` is inside the outer ring (or on it) and not strictly inside a hole.
     pub fn contains(&self, p: DVec2) -> bool {
-        polygon::contains(&self.outer, p)
+        polygon::contains_closed(&self.outer, p)
             && !self
                 .holes
                 .iter()
-                .any(|h| polygon::contains(h, p) && polygon::distance_to_boundary(h, p) > 1e-12)
+                .any(|h| polygon::contains_closed(h, p) && polygon::boundary_distance(h, p) > 1e-12)
     }
 
     /// Every ring: the outer one first, then the holes.
@@ -63,7 +63,7 @@ impl Region {
     pub fn centroid(&self) -> DVec2 {
         let weighted = |ring: &[DVec2]| {
             let a = polygon::signed_area(ring).abs();
-            (polygon::centroid(ring) * a, a)
+            (polygon::centroid(ring).unwrap_or_default() * a, a)
         };
         let (mut c, mut a) = weighted(&self.outer);
         for h in &self.holes {
@@ -74,13 +74,13 @@ impl Region {
         if a > 0.0 {
             c / a
         } else {
-            polygon::centroid(&self.outer)
+            polygon::centroid(&self.outer).unwrap_or_default()
         }
     }
 
     /// Smallest axis-aligned box (min, max) around the outer ring.
     pub fn bounds(&self) -> (DVec2, DVec2) {
-        polygon::bounds(&self.outer)
+        polygon::bounds(&self.outer).unwrap_or_default()
     }
 
     /// True when the segment from `a` to `b` meets the region: an end inside it, or a

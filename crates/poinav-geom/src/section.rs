@@ -543,7 +543,7 @@ pub(crate) mod tests {
         assert!(exact[0]
             .outer
             .iter()
-            .all(|p| hull.contains(*p) || polygon::distance_to_boundary(&hull.outer, *p) < 1e-6));
+            .all(|p| hull.contains(*p) || polygon::boundary_distance(&hull.outer, *p) < 1e-6));
         // Within the default bounds nothing is cut off.
         assert_eq!(
             mesh_section_within(&s, 0.3, 0.6, &SectionBounds::default()).unwrap(),

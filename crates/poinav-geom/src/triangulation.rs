@@ -177,7 +177,7 @@ fn resolved(outer: &[DVec2], holes: &[Vec<DVec2>]) -> (Vec<DVec2>, Vec<[u32; 3]>
         .chain(holes.iter().flatten())
         .copied()
         .collect();
-    let (lo, hi) = crate::polygon::bounds(&input);
+    let (lo, hi) = crate::polygon::bounds(&input).unwrap_or_default();
     let cell = ((hi - lo).max_element() * 1e-6).max(f64::MIN_POSITIVE);
     let key = |p: DVec2| (((p.x - lo.x) / cell) as i64, ((p.y - lo.y) / cell) as i64);
     let mut grid: FxHashMap<(i64, i64), Vec<u32>> = FxHashMap::default();

@@ -112,7 +112,7 @@ fn swept_solids_match_ifcopenshell() {
         f.z_min.abs() < 1e-9 && (f.z_max - 1.025).abs() < 0.001,
         "{f:?}"
     );
-    let (lo, hi) = poinav_geom::polygon::bounds(&f.polygon);
+    let (lo, hi) = poinav_geom::polygon::bounds(&f.polygon).unwrap();
     assert!(
         (lo.x + 0.025).abs() < 0.001 && (hi.x - 3.025).abs() < 0.001,
         "{lo} {hi}"
@@ -123,7 +123,7 @@ fn swept_solids_match_ifcopenshell() {
         .unwrap()
         .footprint;
     assert_eq!((f.z_min, f.z_max), (0.0, 2.0));
-    let (lo, hi) = poinav_geom::polygon::bounds(&f.polygon);
+    let (lo, hi) = poinav_geom::polygon::bounds(&f.polygon).unwrap();
     assert!(lo.distance(DVec2::new(1.0, 30.0)) < 1e-9, "{lo}");
     assert!(hi.distance(DVec2::new(2.5, 32.0)) < 1e-9, "{hi}");
 }

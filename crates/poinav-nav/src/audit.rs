@@ -20,6 +20,7 @@ use crate::route::{Blocking, NoPlace, Place, Target};
 use crate::space_name::SpaceNames;
 use crate::svg;
 use crate::NavError;
+use crate::ZoneIdx;
 use poinav_floor::ElementId;
 
 /// How to audit.
@@ -231,9 +232,9 @@ pub fn audit_with_progress(
 pub fn audit_profile(nav: &Navigator<'_>, start: Option<&str>) -> Result<ProfileAudit, NavError> {
     let b = nav.building;
     let t = &nav.topology;
-    let zone_label = |floor: usize, z: Option<usize>| -> String {
+    let zone_label = |floor: usize, z: Option<ZoneIdx>| -> String {
         match z {
-            Some(k) => t.nodes[t.zone_nodes[floor][k]].label().to_string(),
+            Some(k) => t.nodes[t.zone_nodes[floor][k.get()]].label().to_string(),
             None => "outside".into(),
         }
     };
@@ -241,7 +242,7 @@ pub fn audit_profile(nav: &Navigator<'_>, start: Option<&str>) -> Result<Profile
         .doors
         .iter()
         .map(|s| {
-            let d = &b.floors[s.floor].doors[s.door];
+            let d = &b.floors[s.floor].doors[s.door.get()];
             let (status, reason) = nav.status[s.node].clone();
             DoorAudit {
                 floor: s.floor,
@@ -324,7 +325,7 @@ pub fn audit_profile(nav: &Navigator<'_>, start: Option<&str>) -> Result<Profile
                 .map(|f| b.find_storey(f))
                 .transpose()?;
             let space = b.find_space(name, floor, place.floor.as_deref())?;
-            let node = t.zone_nodes[space.floor][space.zone];
+            let node = t.zone_nodes[space.floor][space.zone.get()];
             (vec![node], vec![s.to_string()])
         }
         None => {
@@ -456,7 +457,7 @@ pub fn entrance_label(nav: &Navigator<'_>, node: usize) -> String {
     let into = sides
         .and_then(|d| d.zones.iter().flatten().next())
         .map(|&z| {
-            let z = &floor.zones[z];
+            let z = &floor.zones[z.get()];
             let words: Vec<&str> = [z.name.as_deref(), z.long_name.as_deref()]
                 .into_iter()
                 .flatten()

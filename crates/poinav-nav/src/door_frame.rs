@@ -55,7 +55,7 @@ fn door_frame_with(
             .filter(|&&z| {
                 d.spaces
                     .as_ref()
-                    .is_some_and(|s| s.contains(&floor.zones[z].id))
+                    .is_some_and(|s| s.contains(&floor.zones[z.get()].id))
             })
             .count();
         (own, sides.iter().flatten().count())

@@ -12,6 +12,7 @@ use serde::Serialize;
 
 use crate::floor::{Floor, FloorObstacle};
 use crate::grid::GridOptions;
+use crate::Ring;
 
 /// A storey with nothing to navigate ([`nothing_to_navigate`]): rasterised empty, no Nav2
 /// folder, no audit drawing.
@@ -49,10 +50,7 @@ pub fn own_extent(floor: &Floor) -> Option<(DVec2, DVec2)> {
                 .filter(|o| is_wall(&o.class))
                 .flat_map(|o| o.rings.iter().flatten()),
         );
-    points.fold(None, |acc, p| match acc {
-        None => Some((*p, *p)),
-        Some((lo, hi)) => Some((lo.min(*p), hi.max(*p))),
-    })
+    crate::polygon::bounds_of(points)
 }
 
 /// Why `floor` has nothing to navigate (no spaces and no doors), or `None`.
@@ -127,10 +125,10 @@ fn crop(floor: &Floor, margin: f64) -> Cow<'_, Floor> {
         .obstacles
         .iter()
         .filter_map(|o| {
-            let rings: Vec<Vec<DVec2>> = o
+            let rings: Vec<Ring> = o
                 .rings
                 .iter()
-                .filter_map(|r| clip_ring(r, lo, hi))
+                .filter_map(|r| clip_ring(r, lo, hi).map(Ring::from))
                 .collect();
             (!rings.is_empty()).then(|| FloorObstacle {
                 rings,
@@ -204,7 +202,7 @@ mod tests {
     use crate::floor::{FloorZone, ObstacleKind};
     use crate::polygon::rect;
 
-    fn obstacle(class: &str, ring: Vec<DVec2>) -> FloorObstacle {
+    fn obstacle(class: &str, ring: Ring) -> FloorObstacle {
         FloorObstacle {
             id: class.into(),
             class: class.into(),
@@ -240,7 +238,7 @@ mod tests {
         let c = cropped(&floor, 2.0);
         assert_eq!(c.obstacles.len(), 2, "the far chair is dropped");
         assert_eq!(c.obstacles[0], floor.obstacles[0]);
-        let mut corners = c.obstacles[1].rings[0].clone();
+        let mut corners = c.obstacles[1].rings[0].to_vec();
         corners.sort_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
         assert_eq!(
             corners,

@@ -20,6 +20,7 @@ use crate::grid::NavGrid;
 use crate::level::Entrance;
 use crate::polygon;
 use crate::zone_index::ZoneIndex;
+use crate::{DoorIdx, ZoneIdx};
 use poinav_floor::ElementId;
 
 /// What a node stands for.
@@ -34,18 +35,40 @@ pub enum NodeKind {
     Landing,
 }
 
+/// What a node stands for, with its index in its list; serialised as its `kind` and `index`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(tag = "kind", content = "index", rename_all = "kebab-case")]
+pub enum NodeOf {
+    /// A space: its index in `Floor::zones`.
+    Zone(ZoneIdx),
+    /// A door or an opening: its index in `Floor::doors`.
+    Door(DoorIdx),
+    /// A landing of a stair, ramp or lift: the connection's index in
+    /// `Building::connections`.
+    Landing(usize),
+}
+
+impl NodeOf {
+    /// Its kind.
+    pub fn kind(self) -> NodeKind {
+        match self {
+            NodeOf::Zone(_) => NodeKind::Zone,
+            NodeOf::Door(_) => NodeKind::Door,
+            NodeOf::Landing(_) => NodeKind::Landing,
+        }
+    }
+}
+
 /// A node.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Node {
     /// Index in [`Topology::nodes`].
     pub id: usize,
-    /// Kind.
-    pub kind: NodeKind,
+    /// What it stands for: a zone, door or connection, with its index in its list.
+    #[serde(flatten)]
+    pub of: NodeOf,
     /// Storey index.
     pub floor: usize,
-    /// Index of the zone, door or connection within its list (`Floor::zones`, `Floor::doors`,
-    /// `Building::connections`).
-    pub index: usize,
     /// GlobalId of the element.
     pub element: ElementId,
     /// Name (zone Name, else LongName; door name; connection name).
@@ -59,6 +82,35 @@ pub struct Node {
 }
 
 impl Node {
+    /// Its kind.
+    pub fn kind(&self) -> NodeKind {
+        self.of.kind()
+    }
+
+    /// The zone it stands for, if a zone node.
+    pub fn zone(&self) -> Option<ZoneIdx> {
+        match self.of {
+            NodeOf::Zone(z) => Some(z),
+            _ => None,
+        }
+    }
+
+    /// The door it stands for, if a door node.
+    pub fn door(&self) -> Option<DoorIdx> {
+        match self.of {
+            NodeOf::Door(d) => Some(d),
+            _ => None,
+        }
+    }
+
+    /// The connection (index in `Building::connections`) it is a landing of, if a landing.
+    pub fn connection(&self) -> Option<usize> {
+        match self.of {
+            NodeOf::Landing(c) => Some(c),
+            _ => None,
+        }
+    }
+
     /// Position.
     pub fn position(&self) -> DVec2 {
         DVec2::new(self.x, self.y)
@@ -106,12 +158,12 @@ pub struct DoorSides {
     /// Storey index.
     pub floor: usize,
     /// Index in `Floor::doors`.
-    pub door: usize,
+    pub door: DoorIdx,
     /// Its node.
     pub node: usize,
     /// Zone index on the side against the passage frame's normal and along it; `None` is
     /// outside the building (no zone within 0.5 m, or the door bounds one space only).
-    pub zones: [Option<usize>; 2],
+    pub zones: [Option<ZoneIdx>; 2],
     /// Where the sides come from: `true` from the spaces the door bounds
     /// ([`crate::FloorDoor::spaces`]), `false` from geometry alone.
     pub from_spaces: bool,
@@ -192,20 +244,21 @@ pub const SIDE_PROBE_M: f64 = 0.5;
 /// The first zone (in floor order) containing `p`, among zones within
 /// [`crate::bounds::ELEMENT_VERTICES`]: a fold over every zone, for a probe or two; many
 /// probes of one floor go through its [`ZoneIndex`], which answers the same.
-pub fn zone_at(floor: &Floor, p: DVec2) -> Option<usize> {
-    floor.zones.iter().position(|z| {
+pub fn zone_at(floor: &Floor, p: DVec2) -> Option<ZoneIdx> {
+    let found = floor.zones.iter().position(|z| {
         // A zone past the vertex bound is unknown in the grid, and doors near it are
         // undecided ([`crate::bounds::door_side_bounds`]): no search pays for its vertices.
         z.ring.len() <= crate::bounds::ELEMENT_VERTICES
             && polygon::bounds(&z.ring)
                 .is_some_and(|(lo, hi)| p.x >= lo.x && p.y >= lo.y && p.x <= hi.x && p.y <= hi.y)
             && polygon::contains(&z.ring, p)
-    })
+    });
+    found.map(ZoneIdx::new)
 }
 
 /// The zone holding `p` ([`ZoneIndex::zone_at`]), else the nearest within [`SIDE_PROBE_M`]
 /// (the first on a tie): where a landing or a robot standing at `p` is.
-pub fn zone_near(floor: &Floor, zones: &ZoneIndex, p: DVec2) -> Option<usize> {
+pub fn zone_near(floor: &Floor, zones: &ZoneIndex, p: DVec2) -> Option<ZoneIdx> {
     zones.zone_at(floor, p).or_else(|| {
         floor
             .zones
@@ -215,7 +268,7 @@ pub fn zone_near(floor: &Floor, zones: &ZoneIndex, p: DVec2) -> Option<usize> {
             .map(|(k, z)| (polygon::area_distance(&z.ring, p), k))
             .filter(|(d, _)| *d <= SIDE_PROBE_M)
             .min_by(|a, b| a.0.total_cmp(&b.0))
-            .map(|(_, k)| k)
+            .map(|(_, k)| ZoneIdx::new(k))
     })
 }
 
@@ -225,7 +278,7 @@ pub fn frame_zones(
     floor: &Floor,
     zones: &ZoneIndex,
     f: &crate::polygon::PassageFrame,
-) -> [Option<usize>; 2] {
+) -> [Option<ZoneIdx>; 2] {
     let step = 0.025;
     let mut sides = [None, None];
     for (s, side) in [-1.0, 1.0].into_iter().enumerate() {
@@ -245,20 +298,21 @@ pub fn frame_zones(
 /// one-sided boundary, as many exporters write) takes the zone geometry finds beyond that
 /// face, so only a door with no space behind it has a side outside; otherwise from geometry
 /// alone (the zones just beyond the passage's faces).
-pub fn door_zones(floor: &Floor, door: usize) -> [Option<usize>; 2] {
+pub fn door_zones(floor: &Floor, door: usize) -> [Option<ZoneIdx>; 2] {
     door_zones_in(floor, &ZoneIndex::new(floor), door)
 }
 
 /// [`door_zones`] with `floor`'s [`ZoneIndex`] (for many doors, build it once).
-pub fn door_zones_in(floor: &Floor, zones: &ZoneIndex, door: usize) -> [Option<usize>; 2] {
+pub fn door_zones_in(floor: &Floor, zones: &ZoneIndex, door: usize) -> [Option<ZoneIdx>; 2] {
     let geometric = geometric_door_zones_in(floor, zones, door);
     let d = &floor.doors[door];
     let Some(ids) = d.spaces.as_ref().filter(|s| !s.is_empty()) else {
         return geometric;
     };
     // The door's own spaces on this floor (a space may have several regions).
-    let own: Vec<usize> = (0..floor.zones.len())
+    let own: Vec<ZoneIdx> = (0..floor.zones.len())
         .filter(|&z| ids.contains(&floor.zones[z].id))
+        .map(ZoneIdx::new)
         .collect();
     if own.is_empty() {
         return geometric;
@@ -280,7 +334,10 @@ pub fn door_zones_in(floor: &Floor, zones: &ZoneIndex, door: usize) -> [Option<u
     // As many sides as the door has spaces (at most two), the missing ones filled with the
     // nearest unused space.
     let distinct = {
-        let mut v: Vec<&str> = own.iter().map(|&z| floor.zones[z].id.as_str()).collect();
+        let mut v: Vec<&str> = own
+            .iter()
+            .map(|&z| floor.zones[z.get()].id.as_str())
+            .collect();
         v.sort_unstable();
         v.dedup();
         v.len().min(2)
@@ -289,18 +346,18 @@ pub fn door_zones_in(floor: &Floor, zones: &ZoneIndex, door: usize) -> [Option<u
         let used: Vec<&str> = sides
             .iter()
             .flatten()
-            .map(|&z| floor.zones[z].id.as_str())
+            .map(|&z| floor.zones[z.get()].id.as_str())
             .collect();
-        let mut best: Option<(f64, usize, usize)> = None;
+        let mut best: Option<(f64, usize, ZoneIdx)> = None;
         for (s, side) in [(0, -1.0), (1, 1.0)] {
             if sides[s].is_some() {
                 continue;
             }
             for &z in &own {
-                if used.contains(&floor.zones[z].id.as_str()) {
+                if used.contains(&floor.zones[z.get()].id.as_str()) {
                     continue;
                 }
-                let dist = polygon::area_distance(&floor.zones[z].ring, probe(side));
+                let dist = polygon::area_distance(&floor.zones[z.get()].ring, probe(side));
                 if best.is_none_or(|(bd, _, _)| dist < bd) {
                     best = Some((dist, s, z));
                 }
@@ -314,16 +371,16 @@ pub fn door_zones_in(floor: &Floor, zones: &ZoneIndex, door: usize) -> [Option<u
     // A side still empty: another space geometry finds beyond that face (never the space on
     // the other side again).
     for s in 0..2 {
-        let other = sides[1 - s].map(|z| floor.zones[z].id.as_str());
+        let other = sides[1 - s].map(|z| floor.zones[z.get()].id.as_str());
         if sides[s].is_none() {
-            sides[s] = geometric[s].filter(|&z| Some(floor.zones[z].id.as_str()) != other);
+            sides[s] = geometric[s].filter(|&z| Some(floor.zones[z.get()].id.as_str()) != other);
         }
     }
     sides
 }
 
 /// The zones on the two sides of a door from geometry alone.
-pub fn geometric_door_zones(floor: &Floor, door: usize) -> [Option<usize>; 2] {
+pub fn geometric_door_zones(floor: &Floor, door: usize) -> [Option<ZoneIdx>; 2] {
     geometric_door_zones_in(floor, &ZoneIndex::new(floor), door)
 }
 
@@ -332,7 +389,7 @@ pub fn geometric_door_zones_in(
     floor: &Floor,
     zones: &ZoneIndex,
     door: usize,
-) -> [Option<usize>; 2] {
+) -> [Option<ZoneIdx>; 2] {
     let d = &floor.doors[door];
     let Some(f) = floor.door_frame_in(door, zones) else {
         // No passage ring: the two zones nearest to the centre within the probe distance.
@@ -345,7 +402,10 @@ pub fn geometric_door_zones_in(
             .filter(|(dist, _)| *dist <= SIDE_PROBE_M)
             .collect();
         near.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-        return [near.first().map(|n| n.1), near.get(1).map(|n| n.1)];
+        return [
+            near.first().map(|n| ZoneIdx::new(n.1)),
+            near.get(1).map(|n| ZoneIdx::new(n.1)),
+        ];
     };
     frame_zones(floor, zones, &f)
 }
@@ -369,9 +429,8 @@ impl Topology {
                 ids.push(nodes.len());
                 nodes.push(Node {
                     id: nodes.len(),
-                    kind: NodeKind::Zone,
+                    of: NodeOf::Zone(ZoneIdx::new(k)),
                     floor: fi,
-                    index: k,
                     element: z.id.clone(),
                     name: z.name.clone().or_else(|| z.long_name.clone()),
                     x: p.x,
@@ -397,9 +456,8 @@ impl Topology {
                 let node = nodes.len();
                 nodes.push(Node {
                     id: node,
-                    kind: NodeKind::Door,
+                    of: NodeOf::Door(DoorIdx::new(k)),
                     floor: fi,
-                    index: k,
                     element: d.id.clone(),
                     name: d.name.clone(),
                     x: p.x,
@@ -411,10 +469,10 @@ impl Topology {
                 } else {
                     door_zones_in(floor, zones, k)
                 };
-                let mut linked: Vec<usize> = zones.iter().flatten().copied().collect();
+                let mut linked: Vec<ZoneIdx> = zones.iter().flatten().copied().collect();
                 linked.dedup();
                 for z in linked {
-                    let zn = zone_nodes[fi][z];
+                    let zn = zone_nodes[fi][z.get()];
                     edges.push(Edge {
                         id: edges.len(),
                         from: zn,
@@ -429,7 +487,7 @@ impl Topology {
                     .is_some_and(|ids| floor.zones.iter().any(|z| ids.contains(&z.id)));
                 doors.push(DoorSides {
                     floor: fi,
-                    door: k,
+                    door: DoorIdx::new(k),
                     node,
                     zones,
                     from_spaces,
@@ -451,9 +509,8 @@ impl Topology {
                 let node = nodes.len();
                 nodes.push(Node {
                     id: node,
-                    kind: NodeKind::Landing,
+                    of: NodeOf::Landing(ci),
                     floor: l.floor,
-                    index: ci,
                     element: c.id.clone(),
                     name: c.name.clone(),
                     x: l.point.x,
@@ -462,7 +519,7 @@ impl Topology {
                 });
                 let zone = zone_near(floor, &indexes[l.floor], l.point);
                 if let Some(z) = zone {
-                    let zn = zone_nodes[l.floor][z];
+                    let zn = zone_nodes[l.floor][z.get()];
                     edges.push(Edge {
                         id: edges.len(),
                         from: zn,
@@ -552,7 +609,7 @@ impl Topology {
     pub fn door(&self, floor: usize, door: usize) -> Option<&DoorSides> {
         self.doors
             .iter()
-            .find(|d| d.floor == floor && d.door == door)
+            .find(|d| d.floor == floor && d.door.get() == door)
     }
 
     /// The node of a zone named `name` (Name or LongName) on storey `floor` (any storey when
@@ -587,10 +644,10 @@ impl Topology {
     ) -> Vec<(AccessibilityStatus, String)> {
         self.nodes
             .iter()
-            .map(|n| match n.kind {
-                NodeKind::Zone => (AccessibilityStatus::FullAccess, String::new()),
-                NodeKind::Door => door_status(&building.floors[n.floor].doors[n.index], profile),
-                NodeKind::Landing => building.connections[n.index].status(profile),
+            .map(|n| match n.of {
+                NodeOf::Zone(_) => (AccessibilityStatus::FullAccess, String::new()),
+                NodeOf::Door(d) => door_status(&building.floors[n.floor].doors[d.get()], profile),
+                NodeOf::Landing(c) => building.connections[c].status(profile),
             })
             .collect()
     }
@@ -606,17 +663,17 @@ impl Topology {
 
     /// Shortest paths from `starts`: edges cost their length (connections
     /// `connection_cost(a, b)`), entering a node costs `node_cost(node)`, and `None` there
-    /// closes the node. Returns per node the distance and the previous node (`usize::MAX` for
+    /// closes the node. Returns per node the distance and the previous node (`None` for
     /// starts and unreached nodes).
     pub fn search(
         &self,
         starts: &[usize],
         node_cost: impl Fn(usize) -> Option<f64>,
         connection_cost: impl Fn(usize, usize) -> f64,
-    ) -> (Vec<f64>, Vec<usize>) {
+    ) -> (Vec<f64>, Vec<Option<usize>>) {
         let n = self.nodes.len();
         let mut dist = vec![f64::INFINITY; n];
-        let mut prev = vec![usize::MAX; n];
+        let mut prev = vec![None; n];
         let mut heap = BinaryHeap::new();
         for &s in starts {
             if s < n && dist[s] > 0.0 {
@@ -639,7 +696,7 @@ impl Topology {
                 let nd = d + w + extra;
                 if nd < dist[v] {
                     dist[v] = nd;
-                    prev[v] = u;
+                    prev[v] = Some(u);
                     heap.push(HeapItem(nd, v));
                 }
             }
@@ -647,27 +704,27 @@ impl Topology {
         (dist, prev)
     }
 
-    /// The doors (indices in `Floor::doors`) on the shortest way from zone `from` to zone
-    /// `to` of storey `floor`, in order, through doors `usable` accepts only (and no stair,
-    /// ramp or lift): [`Topology::search`] from `from`'s node. Empty when `from == to`; `None`
-    /// when `to` cannot be reached.
+    /// The doors on the shortest way from zone `from` to zone `to` of storey `floor`, in
+    /// order, through doors `usable` accepts only (and no stair, ramp or lift):
+    /// [`Topology::search`] from `from`'s node. Empty when `from == to`; `None` when `to`
+    /// cannot be reached.
     pub fn door_path(
         &self,
         floor: usize,
-        from: usize,
-        to: usize,
-        usable: impl Fn(usize) -> bool,
-    ) -> Option<Vec<usize>> {
-        let start = *self.zone_nodes.get(floor)?.get(from)?;
-        let goal = *self.zone_nodes[floor].get(to)?;
+        from: ZoneIdx,
+        to: ZoneIdx,
+        usable: impl Fn(DoorIdx) -> bool,
+    ) -> Option<Vec<DoorIdx>> {
+        let start = *self.zone_nodes.get(floor)?.get(from.get())?;
+        let goal = *self.zone_nodes[floor].get(to.get())?;
         let (dist, prev) = self.search(
             &[start],
             |n| {
                 let node = &self.nodes[n];
-                match node.kind {
-                    NodeKind::Zone => Some(0.0),
-                    NodeKind::Door => (node.floor == floor && usable(node.index)).then_some(0.0),
-                    NodeKind::Landing => None,
+                match node.of {
+                    NodeOf::Zone(_) => Some(0.0),
+                    NodeOf::Door(d) => (node.floor == floor && usable(d)).then_some(0.0),
+                    NodeOf::Landing(_) => None,
                 }
             },
             |_, _| f64::INFINITY,
@@ -678,18 +735,17 @@ impl Topology {
         Some(
             Topology::path_to(&prev, goal)
                 .into_iter()
-                .filter(|&n| self.nodes[n].kind == NodeKind::Door)
-                .map(|n| self.nodes[n].index)
+                .filter_map(|n| self.nodes[n].door())
                 .collect(),
         )
     }
 
     /// The node path ending at `goal` from [`Topology::search`]'s `prev`.
-    pub fn path_to(prev: &[usize], goal: usize) -> Vec<usize> {
+    pub fn path_to(prev: &[Option<usize>], goal: usize) -> Vec<usize> {
         let mut path = vec![goal];
         let mut at = goal;
-        while prev[at] != usize::MAX {
-            at = prev[at];
+        while let Some(p) = prev[at] {
+            at = p;
             path.push(at);
             if path.len() > prev.len() {
                 break;
@@ -724,7 +780,7 @@ impl Topology {
             .map(|n| {
                 let mut v = serde_json::json!({
                     "id": n.id,
-                    "kind": n.kind,
+                    "kind": n.kind(),
                     "floor": n.floor,
                     "element": n.element,
                     "name": n.name,
@@ -732,9 +788,9 @@ impl Topology {
                     "y": round6(n.y),
                     "roles": n.roles,
                 });
-                match n.kind {
-                    NodeKind::Door => {
-                        let sides = self.door(n.floor, n.index);
+                match n.of {
+                    NodeOf::Door(d) => {
+                        let sides = self.door(n.floor, d.get());
                         v["exterior"] = serde_json::json!(sides.is_some_and(|s| s.exterior()));
                         v["entrance"] = serde_json::json!(sides.and_then(|s| s.entrance()));
                         v["sides_from"] =
@@ -747,14 +803,14 @@ impl Topology {
                         v["status"] = serde_json::json!(statuses[n.id].0);
                         v["reason"] = serde_json::json!(statuses[n.id].1);
                     }
-                    NodeKind::Landing => {
-                        let c = &building.connections[n.index];
+                    NodeOf::Landing(c) => {
+                        let c = &building.connections[c];
                         v["connection"] = serde_json::json!(c.kind.label());
                         v["status"] = serde_json::json!(statuses[n.id].0);
                         v["reason"] = serde_json::json!(statuses[n.id].1);
                     }
-                    NodeKind::Zone => {
-                        let z = &building.floors[n.floor].zones[n.index];
+                    NodeOf::Zone(z) => {
+                        let z = &building.floors[n.floor].zones[z.get()];
                         v["long_name"] = serde_json::json!(z.long_name);
                         if let Some((sep, protocol)) = z.coordination {
                             v["coordination"] = serde_json::json!({
@@ -779,9 +835,9 @@ impl Topology {
                     "kind": e.kind,
                     "length_m": round6(e.length_m),
                 });
-                match through.kind {
-                    NodeKind::Door => {
-                        let d = &building.floors[through.floor].doors[through.index];
+                match through.of {
+                    NodeOf::Door(d) => {
+                        let d = &building.floors[through.floor].doors[d.get()];
                         v["via"] = serde_json::json!(d.id);
                         v["name"] = serde_json::json!(d.name);
                         v["clear_width_m"] = serde_json::json!(d.clear_width_m);
@@ -790,8 +846,8 @@ impl Topology {
                         v["reason"] = serde_json::json!(statuses[through.id].1);
                         v["roles"] = serde_json::json!(d.roles);
                     }
-                    NodeKind::Landing => {
-                        let c = &building.connections[through.index];
+                    NodeOf::Landing(c) => {
+                        let c = &building.connections[c];
                         v["via"] = serde_json::json!(c.id);
                         v["name"] = serde_json::json!(c.name);
                         v["connection"] = serde_json::json!(c.kind.label());
@@ -800,7 +856,7 @@ impl Topology {
                         v["status"] = serde_json::json!(statuses[through.id].0);
                         v["reason"] = serde_json::json!(statuses[through.id].1);
                     }
-                    NodeKind::Zone => {}
+                    NodeOf::Zone(_) => {}
                 }
                 v
             })
@@ -837,7 +893,7 @@ impl Topology {
     pub fn zone_labels(&self) -> BTreeMap<usize, String> {
         self.nodes
             .iter()
-            .filter(|n| n.kind == NodeKind::Zone)
+            .filter(|n| n.kind() == NodeKind::Zone)
             .map(|n| (n.id, n.label().to_string()))
             .collect()
     }

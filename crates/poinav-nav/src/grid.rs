@@ -22,6 +22,7 @@ use crate::floor::{Floor, ObstacleKind};
 use crate::polygon::{self, PassageFrame};
 use crate::zone_index::ZoneIndex;
 use crate::NavError;
+use crate::Ring;
 use poinav_floor::{DoorIdx, ZoneIdx};
 
 /// What a cell is.
@@ -107,11 +108,6 @@ impl Default for GridOptions {
 /// indices and clearances at 5 cm is a 1 km square). Inflation, the enclosed fill and the
 /// open-boundary scan are linear in cells, so this bounds them too.
 pub const MAX_CELLS: usize = 400_000_000;
-
-/// A closed rectangle ring from its corners.
-fn rect_ring(lo: DVec2, hi: DVec2) -> Vec<DVec2> {
-    vec![lo, DVec2::new(hi.x, lo.y), hi, DVec2::new(lo.x, hi.y)]
-}
 
 /// The bound door `d` passes, if any: its side search ([`bounds::door_side_bounds`], given
 /// as `sides`), filling its ring, or the cells of the search through its passage (a square
@@ -246,7 +242,7 @@ pub fn entrance_aprons(
     floor: &Floor,
     profile: &RobotProfile,
     options: &GridOptions,
-) -> Vec<(usize, Vec<DVec2>)> {
+) -> Vec<(usize, Ring)> {
     let apron = options.entrance_apron_m;
     if !(apron.is_finite() && apron > 0.0) {
         return Vec::new();
@@ -374,20 +370,14 @@ impl OccupancyGrid {
                 0
             }
         };
-        let rings_bounds = |rings: &[Vec<DVec2>]| {
-            rings
-                .iter()
-                .filter_map(|r| polygon::bounds(r))
-                .reduce(|(a, b), (c, d)| (a.min(c), b.max(d)))
-        };
         // Past a bound: the bound and the element's bounding box.
-        let past = |rings: &[Vec<DVec2>]| {
-            let vertices = rings.iter().map(Vec::len).sum();
+        let past = |rings: &[Ring]| {
+            let vertices = rings.iter().map(|r| r.len()).sum();
             let work = rings
                 .iter()
                 .filter_map(|r| Some(r.len() as u64 * rows(polygon::bounds(r)?) as u64))
                 .sum();
-            let bbox = rings_bounds(rings)?;
+            let bbox = polygon::bounds_of(rings.iter().flat_map(|r| r.iter()))?;
             bounds::raster_bound(vertices, work, limits).map(|b| (b, bbox))
         };
         let mut gave_up: Vec<GaveUp> = Vec::new();
@@ -490,11 +480,18 @@ impl OccupancyGrid {
             let Some((bound, (lo, hi))) = &zone_past[k] else {
                 continue;
             };
-            paint(width, height, origin, res, &rect_ring(*lo, *hi), |i| {
-                if zone[i].is_none() && cells[i] == CellState::Free {
-                    cells[i] = CellState::Unknown;
-                }
-            });
+            paint(
+                width,
+                height,
+                origin,
+                res,
+                &polygon::rect(lo.x, lo.y, hi.x, hi.y),
+                |i| {
+                    if zone[i].is_none() && cells[i] == CellState::Free {
+                        cells[i] = CellState::Unknown;
+                    }
+                },
+            );
             note(
                 &z.id,
                 "IfcSpace",
@@ -513,7 +510,7 @@ impl OccupancyGrid {
                 }
             };
             let box_ring;
-            let rings: &[Vec<DVec2>] = match &obstacle_past[oi] {
+            let rings: &[Ring] = match &obstacle_past[oi] {
                 Some((bound, (lo, hi))) => {
                     note(
                         &o.id,
@@ -522,7 +519,7 @@ impl OccupancyGrid {
                         bound.clone(),
                         "its bounding box is unknown",
                     );
-                    box_ring = [rect_ring(*lo, *hi)];
+                    box_ring = [polygon::rect(lo.x, lo.y, hi.x, hi.y)];
                     &box_ring
                 }
                 None => &o.rings,
@@ -550,11 +547,18 @@ impl OccupancyGrid {
             let given_up = door_bound(d, &door_sides[k], &rows, limits, res);
             if let Some((stage, bound)) = given_up {
                 if let Some((lo, hi)) = polygon::bounds(&d.ring) {
-                    paint(width, height, origin, res, &rect_ring(lo, hi), |i| {
-                        if cells[i] != CellState::Occupied {
-                            cells[i] = CellState::Unknown;
-                        }
-                    });
+                    paint(
+                        width,
+                        height,
+                        origin,
+                        res,
+                        &polygon::rect(lo.x, lo.y, hi.x, hi.y),
+                        |i| {
+                            if cells[i] != CellState::Occupied {
+                                cells[i] = CellState::Unknown;
+                            }
+                        },
+                    );
                 }
                 note(
                     &d.id,
@@ -953,10 +957,7 @@ fn door_clearance(g: &OccupancyGrid, clearance: &mut [f32]) {
         let reach = f.half_depth + PASSAGE_REACH_M;
         let corners = [-1.0, 1.0]
             .map(|a| [-1.0, 1.0].map(|n| f.center + f.axis * (a * half) + f.normal * (n * reach)));
-        let (lo, hi) = corners.iter().flatten().fold(
-            (DVec2::splat(f64::MAX), DVec2::splat(f64::MIN)),
-            |(lo, hi), p| (lo.min(*p), hi.max(*p)),
-        );
+        let (lo, hi) = polygon::bounds_of(corners.iter().flatten()).unwrap_or_default();
         let cell = |p: DVec2| ((p - g.origin) / res).floor();
         let (a, b) = (cell(lo).max(DVec2::ZERO), cell(hi));
         if !(b.x >= 0.0 && b.y >= 0.0) {

@@ -95,7 +95,7 @@ pub use grid::{CellState, FurnitureMode, GridOptions, InflationOptions, NavGrid,
 pub use level::{Entrance, FloorLevel, LevelSource};
 pub use nav2::{write_bundle, write_bundle_with_progress, Nav2Options};
 pub use navigator::{NavOptions, Navigator};
-pub use poinav_floor::{DoorIdx, ElementId, ZoneIdx};
+pub use poinav_floor::{DoorIdx, ElementId, ObstacleIdx, Ring, ZoneIdx};
 pub use progress::{Phase, Progress};
 pub use route::{NoPlace, Place, Route, Unreachable};
 pub use space_name::{Ambiguous, SpaceNames, SpaceRef};

@@ -160,7 +160,7 @@ impl<'a> Navigator<'a> {
         // A door whose side without a zone is walled in is no entrance (the grid found it).
         // A door the grid gave up on is no entrance and not passable either.
         for d in &mut topology.doors {
-            let g = &floors[d.floor].grid.occupancy.doors[d.door];
+            let g = &floors[d.floor].grid.occupancy.doors[d.door.get()];
             d.walled_in = g.walled_in;
             d.gave_up |= g.gave_up;
         }
@@ -171,16 +171,16 @@ impl<'a> Navigator<'a> {
             .nodes
             .iter()
             .map(|n| {
-                let passable = match n.kind {
-                    NodeKind::Door => {
+                let passable = match n.door() {
+                    Some(d) => {
                         let outside = topology
-                            .door(n.floor, n.index)
+                            .door(n.floor, d.get())
                             .and_then(|d| d.outside_side());
-                        floors[n.floor].grid.door_passable(n.index, outside)
+                        floors[n.floor].grid.door_passable(d.get(), outside)
                     }
-                    _ => true,
+                    None => true,
                 };
-                if n.kind == NodeKind::Door {
+                if n.kind() == NodeKind::Door {
                     progress(Phase::Graph, n.id + 1, total);
                 }
                 passable
@@ -298,11 +298,11 @@ impl<'a> Navigator<'a> {
     pub fn closed_reason(&self, n: usize) -> String {
         let (s, why) = &self.status[n];
         let node = &self.topology.nodes[n];
-        let gave_up = node.kind == NodeKind::Door
-            && self
-                .topology
-                .door(node.floor, node.index)
-                .is_some_and(|d| d.gave_up);
+        let gave_up = node.door().is_some_and(|d| {
+            self.topology
+                .door(node.floor, d.get())
+                .is_some_and(|d| d.gave_up)
+        });
         if gave_up {
             format!(
                 "{} ({why}) but given up on: a size bound was passed, so it is taken as closed",
@@ -335,14 +335,14 @@ impl<'a> Navigator<'a> {
     /// three cells before one face to three cells beyond the other. Empty for other nodes.
     pub fn in_the_way(&self, n: usize) -> Vec<String> {
         let node = &self.topology.nodes[n];
-        if node.kind != NodeKind::Door {
+        let Some(d) = node.door() else {
             return Vec::new();
-        }
+        };
         let (floor, grid) = (
             &self.building.floors[node.floor],
             &self.floors[node.floor].grid,
         );
-        let Some(door) = grid.occupancy.doors.get(node.index) else {
+        let Some(door) = grid.occupancy.doors.get(d.get()) else {
             return Vec::new();
         };
         let (Some(frame), Some(half_width)) = (door.frame, door.passage_half_width_m) else {
@@ -354,29 +354,18 @@ impl<'a> Navigator<'a> {
             (half_width - lethal).max(res / 2.0),
             frame.half_depth + 3.0 * res,
         );
-        let own = &floor.doors[node.index].id;
+        let own = &floor.doors[d.get()].id;
         let mut found: Vec<(f64, String)> = floor
             .obstacles
             .iter()
             .filter(|o| &o.id != own)
             .filter_map(|o| {
                 // An element past the vertex bound stands as its bounding box, as in the grid.
-                let vertices: usize = o.rings.iter().map(Vec::len).sum();
-                let boxed: Vec<Vec<glam::DVec2>>;
+                let vertices: usize = o.rings.iter().map(|r| r.len()).sum();
+                let boxed: Vec<crate::Ring>;
                 let rings = if vertices > crate::bounds::ELEMENT_VERTICES {
-                    boxed = o
-                        .rings
-                        .iter()
-                        .filter_map(|r| crate::polygon::bounds(r))
-                        .reduce(|(a, b), (c, d)| (a.min(c), b.max(d)))
-                        .map(|(lo, hi)| {
-                            vec![
-                                lo,
-                                glam::DVec2::new(hi.x, lo.y),
-                                hi,
-                                glam::DVec2::new(lo.x, hi.y),
-                            ]
-                        })
+                    boxed = crate::polygon::bounds_of(o.rings.iter().flat_map(|r| r.iter()))
+                        .map(|(lo, hi)| crate::polygon::rect(lo.x, lo.y, hi.x, hi.y))
                         .into_iter()
                         .collect();
                     &boxed

@@ -17,7 +17,7 @@ use glam::DVec2;
 use poinav_roles::{AccessibilityStatus, Role};
 use serde::Serialize;
 
-use crate::graph::{round6, EdgeKind, NodeKind, Topology};
+use crate::graph::{round6, EdgeKind, NodeKind, NodeOf, Topology};
 use crate::grid::{NavGrid, NEIGHBOURS};
 use crate::navigator::{FloorNav, Navigator};
 use crate::space_name::SpaceNames;
@@ -620,9 +620,9 @@ impl Navigator<'_> {
                 let space = self
                     .building
                     .find_space(name, floor, place.floor.as_deref())?;
-                let node = self.topology.zone_nodes[space.floor][space.zone];
+                let node = self.topology.zone_nodes[space.floor][space.zone.get()];
                 let n = &self.topology.nodes[node];
-                let cell = self.zone_cell(n.floor, n.index).ok_or_else(|| {
+                let cell = self.zone_cell(n.floor, space.zone.get()).ok_or_else(|| {
                     NavError::NoRoom(format!(
                         "space `{name}` has no spot where the robot fits (inflated by {:.3} m)",
                         self.floors[n.floor].grid.lethal_radius_m
@@ -673,7 +673,10 @@ impl Navigator<'_> {
     /// The cost in metres-equivalent of the connection edge between landings `a` and `b`.
     pub fn connection_cost(&self, a: usize, b: usize) -> f64 {
         let (na, nb) = (&self.topology.nodes[a], &self.topology.nodes[b]);
-        let c = &self.building.connections[na.index];
+        // Connection edges join landings; anything else is no connection.
+        let Some(c) = na.connection().map(|c| &self.building.connections[c]) else {
+            return f64::INFINITY;
+        };
         let dz =
             self.building.floors[na.floor].elevation_m - self.building.floors[nb.floor].elevation_m;
         c.travel_time_s(dz, &self.profile) * self.profile.max_speed_m_s
@@ -700,7 +703,7 @@ impl Navigator<'_> {
             path.iter()
                 .filter(|&&n| !self.open[n])
                 .filter(|&&n| {
-                    let key = (t.nodes[n].kind, t.nodes[n].element.as_str());
+                    let key = (t.nodes[n].kind(), t.nodes[n].element.as_str());
                     let new = !seen.contains(&key);
                     seen.push(key);
                     new
@@ -711,7 +714,7 @@ impl Navigator<'_> {
                         floor: self.building.floors[node.floor].name.clone(),
                         element: node.element.clone(),
                         name: node.name.clone(),
-                        kind: node.kind,
+                        kind: node.kind(),
                         status: self.status[n].0,
                         reason: self.closed_reason(n),
                     }
@@ -772,7 +775,7 @@ impl Navigator<'_> {
         let mut closed = Vec::new();
         for d in exterior {
             let grid = &self.floors[d.floor].grid;
-            let frame = grid.occupancy.doors[d.door].frame;
+            let frame = grid.occupancy.doors[d.door.get()].frame;
             let (Some(f), Some(side)) = (frame, d.outside_side()) else {
                 continue;
             };
@@ -973,10 +976,10 @@ impl Navigator<'_> {
         }
         let passed: Vec<PassedConnection> = connections
             .iter()
-            .map(|&(x, y)| {
+            .filter_map(|&(x, y)| {
                 let (nx, ny) = (&t.nodes[x], &t.nodes[y]);
-                let c = &self.building.connections[nx.index];
-                PassedConnection {
+                let c = &self.building.connections[nx.connection()?];
+                Some(PassedConnection {
                     id: c.id.clone(),
                     name: c.name.clone(),
                     kind: c.kind.label(),
@@ -984,7 +987,7 @@ impl Navigator<'_> {
                     to_floor: self.building.floors[ny.floor].name.clone(),
                     status: self.status[x].0,
                     time_s: round6(self.connection_cost(x, y) / self.profile.max_speed_m_s),
-                }
+                })
             })
             .collect();
         let length_m = legs.iter().map(|l| l.length_m).sum();
@@ -1019,10 +1022,10 @@ impl Navigator<'_> {
             if node.floor != floor {
                 continue;
             }
-            match node.kind {
-                NodeKind::Zone => zones_ok[node.index] = true,
-                NodeKind::Door => doors_ok[node.index] = true,
-                NodeKind::Landing => {}
+            match node.of {
+                NodeOf::Zone(z) => zones_ok[z.get()] = true,
+                NodeOf::Door(d) => doors_ok[d.get()] = true,
+                NodeOf::Landing(_) => {}
             }
         }
         let costs = CellCost {

@@ -53,7 +53,7 @@ use std::collections::{BTreeMap, BTreeSet};
 use glam::DVec2;
 use serde_json::{json, Map, Value};
 
-use crate::graph::{round6, EdgeKind, NodeKind};
+use crate::graph::{round6, EdgeKind, NodeOf};
 use crate::nav2::Nav2Options;
 use crate::navigator::Navigator;
 use crate::route::{astar_window, simplify, window_of, CellCost};
@@ -236,15 +236,15 @@ pub fn storey_graph(nav: &Navigator<'_>, fi: usize, options: &Nav2Options) -> St
         .collect();
     let zone_cells = nav.zone_cells(fi);
     for n in t.nodes.iter().filter(|n| n.floor == fi) {
-        let cell = match n.kind {
-            NodeKind::Zone => zone_cells.get(n.index).copied().flatten(),
-            NodeKind::Door => {
+        let cell = match n.of {
+            NodeOf::Zone(z) => zone_cells.get(z.get()).copied().flatten(),
+            NodeOf::Door(_) => {
                 if !nav.open[n.id] {
                     continue;
                 }
                 grid.nearest_traversable(n.position(), 0.5)
             }
-            NodeKind::Landing => {
+            NodeOf::Landing(_) => {
                 if !nav.open[n.id] {
                     continue;
                 }
@@ -253,22 +253,22 @@ pub fn storey_graph(nav: &Navigator<'_>, fi: usize, options: &Nav2Options) -> St
         };
         let Some(cell) = cell else { continue };
         let mut meta = json!({
-            "kind": n.kind,
+            "kind": n.kind(),
             "element": n.element,
             "name": n.name,
             "storey": floor.name,
             "storey_index": fi,
         });
-        match n.kind {
-            NodeKind::Door => {
-                let d = &floor.doors[n.index];
+        match n.of {
+            NodeOf::Door(d) => {
+                let d = &floor.doors[d.get()];
                 meta["roles"] = roles(&d.roles);
                 meta["status"] = json!(nav.status[n.id].0);
                 meta["clear_width_m"] = json!(d.clear_width_m);
                 meta["doorless"] = json!(d.doorless);
             }
-            NodeKind::Landing => {
-                let c = &nav.building.connections[n.index];
+            NodeOf::Landing(c) => {
+                let c = &nav.building.connections[c];
                 meta["roles"] = roles(&n.roles);
                 meta["connection"] = json!(c.kind.label());
                 meta["status"] = json!(nav.status[n.id].0);
@@ -280,8 +280,8 @@ pub fn storey_graph(nav: &Navigator<'_>, fi: usize, options: &Nav2Options) -> St
                     .collect();
                 meta["to_floors"] = json!(others);
             }
-            NodeKind::Zone => {
-                meta["roles"] = roles(&floor.zones[n.index].roles);
+            NodeOf::Zone(z) => {
+                meta["roles"] = roles(&floor.zones[z.get()].roles);
             }
         }
         port[n.id] = Some((nodes.len(), cell));
@@ -369,8 +369,8 @@ pub fn storey_graph(nav: &Navigator<'_>, fi: usize, options: &Nav2Options) -> St
         }
         let mut doors_ok = vec![false; floor.doors.len()];
         for n in [a, b] {
-            if t.nodes[n].kind == NodeKind::Door {
-                doors_ok[t.nodes[n].index] = true;
+            if let Some(d) = t.nodes[n].door() {
+                doors_ok[d.get()] = true;
             }
         }
         // The end cells themselves too: a door's spot may fall just inside a neighbouring
@@ -464,9 +464,8 @@ fn storey_edge(
     // The door whose node the edge starts at, if any.
     let from_door = nodes[s]
         .topology
-        .map(|n| &t.nodes[n])
-        .filter(|n| n.kind == NodeKind::Door)
-        .map(|n| n.index);
+        .and_then(|n| t.nodes[n].door())
+        .map(|d| d.get());
     let mut operations = Map::new();
     for &d in &doors {
         let door = &floor.doors[d];
@@ -514,13 +513,14 @@ fn storey_edge(
 fn zones_of(nav: &Navigator<'_>, n: usize, fi: usize) -> BTreeSet<usize> {
     let t = &nav.topology;
     let node = &t.nodes[n];
-    if node.kind == NodeKind::Zone {
-        return [node.index].into_iter().collect();
+    if let Some(z) = node.zone() {
+        return [z.get()].into_iter().collect();
     }
     t.adjacency[n]
         .iter()
-        .filter(|(_, v)| t.nodes[*v].kind == NodeKind::Zone && t.nodes[*v].floor == fi)
-        .map(|(_, v)| t.nodes[*v].index)
+        .filter(|(_, v)| t.nodes[*v].floor == fi)
+        .filter_map(|(_, v)| t.nodes[*v].zone())
+        .map(|z| z.get())
         .collect()
 }
 
@@ -742,7 +742,11 @@ fn building_features<E>(
         let (Some(&ga), Some(&gb)) = (graphs[ka].0.port.get(&a), graphs[kb].0.port.get(&b)) else {
             continue;
         };
-        let c = &nav.building.connections[na.index];
+        // Connection edges join landings.
+        let NodeOf::Landing(ci) = na.of else {
+            continue;
+        };
+        let c = &nav.building.connections[ci];
         let (from, to) = (
             &nav.building.floors[na.floor].name,
             &nav.building.floors[nb.floor].name,

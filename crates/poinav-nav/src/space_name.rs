@@ -6,7 +6,7 @@ use std::fmt;
 
 use crate::building::Building;
 use crate::floor::FloorZone;
-use crate::NavError;
+use crate::{NavError, ZoneIdx};
 use poinav_floor::ElementId;
 
 /// A space of a [`Building`]: storey index and zone index on it.
@@ -15,7 +15,7 @@ pub struct SpaceRef {
     /// Index in [`Building::floors`].
     pub floor: usize,
     /// Index in that floor's [`crate::Floor::zones`].
-    pub zone: usize,
+    pub zone: ZoneIdx,
 }
 
 /// One of the spaces an ambiguous name fits.
@@ -110,15 +110,15 @@ pub trait SpaceNames {
 impl SpaceNames for Building {
     fn spaces(&self) -> impl Iterator<Item = (SpaceRef, &FloorZone)> {
         self.floors.iter().enumerate().flat_map(|(floor, f)| {
-            f.zones
-                .iter()
-                .enumerate()
-                .map(move |(zone, z)| (SpaceRef { floor, zone }, z))
+            f.zones.iter().enumerate().map(move |(zone, z)| {
+                let zone = ZoneIdx::new(zone);
+                (SpaceRef { floor, zone }, z)
+            })
         })
     }
 
     fn space(&self, s: SpaceRef) -> &FloorZone {
-        &self.floors[s.floor].zones[s.zone]
+        &self.floors[s.floor].zones[s.zone.get()]
     }
 
     fn spaces_named(&self, name: &str, floor: Option<usize>) -> Vec<SpaceRef> {
@@ -253,7 +253,7 @@ mod tests {
             id: id.into(),
             name: Some(name.into()),
             long_name: Some(long.into()),
-            ring: Vec::new(),
+            ring: Default::default(),
             roles: Vec::new(),
             coordination: None,
         }
@@ -289,7 +289,10 @@ mod tests {
     #[test]
     fn a_unique_name_a_global_id_or_name_at_storey_selects_one_space() {
         let b = building();
-        let at = |floor, zone| SpaceRef { floor, zone };
+        let at = |floor, zone| SpaceRef {
+            floor,
+            zone: ZoneIdx::new(zone),
+        };
         assert_eq!(b.find_space("OFFICE", None, None).unwrap(), at(0, 0));
         assert_eq!(b.find_space("g3", None, None).unwrap(), at(0, 2));
         assert_eq!(

@@ -167,13 +167,8 @@ pub fn audit_svg(
         let ring = if door.ring.len() >= 3 {
             door.ring.clone()
         } else {
-            let r = 0.25 * unit;
-            vec![
-                door.center + DVec2::new(-r, -r),
-                door.center + DVec2::new(r, -r),
-                door.center + DVec2::new(r, r),
-                door.center + DVec2::new(-r, r),
-            ]
+            let (c, r) = (door.center, 0.25 * unit);
+            polygon::rect(c.x - r, c.y - r, c.x + r, c.y + r)
         };
         let dash = if d.grid_passable {
             String::new()

@@ -9,6 +9,7 @@ use glam::DVec2;
 
 use crate::floor::Floor;
 use crate::polygon;
+use crate::ZoneIdx;
 
 /// Most bucket entries per zone before the buckets are made coarser (zones as large as the
 /// floor would otherwise be listed in every bucket).
@@ -143,14 +144,14 @@ impl ZoneIndex {
 
     /// The first zone (in floor order) containing `p`, as [`crate::graph::zone_at`] answers.
     /// `floor` must be the floor the index was built from.
-    pub fn zone_at(&self, floor: &Floor, p: DVec2) -> Option<usize> {
+    pub fn zone_at(&self, floor: &Floor, p: DVec2) -> Option<ZoneIdx> {
         let hit = |z: usize| {
             self.boxes[z]
                 .is_some_and(|(lo, hi)| p.x >= lo.x && p.y >= lo.y && p.x <= hi.x && p.y <= hi.y)
                 && polygon::contains(&floor.zones[z].ring, p)
         };
         if !p.is_finite() {
-            return (0..self.boxes.len()).find(|&z| hit(z));
+            return (0..self.boxes.len()).find(|&z| hit(z)).map(ZoneIdx::new);
         }
         let c = bucket(self.lo.x, self.cell, self.cols, p.x);
         let r = bucket(self.lo.y, self.cell, self.rows, p.y);
@@ -165,6 +166,7 @@ impl ZoneIndex {
             (Some(a), Some(b)) => Some(a.min(b)),
             (a, b) => a.or(b),
         }
+        .map(ZoneIdx::new)
     }
 }
 
@@ -217,7 +219,7 @@ mod tests {
             id: format!("z{}", ring.len()).into(),
             name: None,
             long_name: None,
-            ring,
+            ring: ring.into(),
             roles: vec![],
             coordination: None,
         }
@@ -326,8 +328,14 @@ mod tests {
         ];
         same_answers(&f, &points);
         let index = ZoneIndex::new(&f);
-        assert_eq!(index.zone_at(&f, DVec2::new(2.5, 2.5)), Some(1));
-        assert_eq!(index.zone_at(&f, DVec2::new(20.0, 20.0)), Some(4));
+        assert_eq!(
+            index.zone_at(&f, DVec2::new(2.5, 2.5)),
+            Some(ZoneIdx::new(1))
+        );
+        assert_eq!(
+            index.zone_at(&f, DVec2::new(20.0, 20.0)),
+            Some(ZoneIdx::new(4))
+        );
         assert_eq!(index.zone_at(&f, DVec2::new(3e4, 0.0)), None);
         // A floor without zones.
         same_answers(&Floor::default(), &points);
@@ -355,8 +363,14 @@ mod tests {
             .map(|k| DVec2::new((k % 97) as f64 * 0.83, (k / 97) as f64 * 1.97))
             .collect();
         same_answers(&f, &points);
-        assert_eq!(index.zone_at(&f, DVec2::new(3.0, 1.0)), Some(1));
-        assert_eq!(index.zone_at(&f, DVec2::new(79.9, 79.9)), Some(1599));
+        assert_eq!(
+            index.zone_at(&f, DVec2::new(3.0, 1.0)),
+            Some(ZoneIdx::new(1))
+        );
+        assert_eq!(
+            index.zone_at(&f, DVec2::new(79.9, 79.9)),
+            Some(ZoneIdx::new(1599))
+        );
         assert_eq!(
             index.zone_at(&f, DVec2::new(80.0, 80.0)),
             crate::graph::zone_at(&f, DVec2::new(80.0, 80.0))

@@ -56,7 +56,7 @@ fn two_rooms(east_vertices: usize) -> Floor {
     let east = if east_vertices <= 4 {
         rect(5.2, 0.0, 10.0, 5.0)
     } else {
-        dense_rect(5.2, 0.0, 10.0, 5.0, east_vertices)
+        dense_rect(5.2, 0.0, 10.0, 5.0, east_vertices).into()
     };
     Floor {
         name: "Level 1".into(),
@@ -120,7 +120,7 @@ fn an_obstacle_past_the_vertex_bound_is_unknown_over_its_box_and_named() {
             id: id.into(),
             class: "IfcFurniture".into(),
             kind: ObstacleKind::Furniture,
-            rings: vec![circle(c, r, n)],
+            rings: vec![circle(c, r, n).into()],
             roles: vec![],
         });
     }

@@ -7,7 +7,7 @@ mod support;
 use glam::DVec2;
 use poinav_nav::graph::{door_zones, zone_near, Topology};
 use poinav_nav::zone_index::ZoneIndex;
-use poinav_nav::{Building, DoorFrame, Floor};
+use poinav_nav::{Building, DoorFrame, Floor, ZoneIdx};
 use support::{door, rect, room};
 
 /// A square 1 x 1 m passage (a door in a wall as thick as the door is wide) with the hall
@@ -26,10 +26,10 @@ fn ambiguous_entrance() -> Floor {
     }
 }
 
-fn names(floor: &Floor, sides: [Option<usize>; 2]) -> Vec<&str> {
+fn names(floor: &Floor, sides: [Option<ZoneIdx>; 2]) -> Vec<&str> {
     let mut v: Vec<&str> = sides
         .iter()
-        .map(|z| z.map_or("outside", |z| floor.zones[z].name.as_deref().unwrap()))
+        .map(|z| z.map_or("outside", |z| floor.zones[z.get()].name.as_deref().unwrap()))
         .collect();
     v.sort_unstable();
     v
@@ -229,26 +229,39 @@ fn door_paths_take_the_shortest_way_through_usable_doors() {
     let floor = row_above_corridor();
     let topology = Topology::build(&Building::single(floor.clone()));
     let all = |_: usize| true;
-    assert_eq!(topology.door_path(0, 0, 0, all), Some(vec![]));
-    assert_eq!(topology.door_path(0, 0, 1, all), Some(vec![0]));
+    // Zones and doors by their plain indices.
+    let door_path = |floor: usize, from: usize, to: usize, usable: &dyn Fn(usize) -> bool| {
+        let (from, to) = (ZoneIdx::new(from), ZoneIdx::new(to));
+        topology
+            .door_path(floor, from, to, |k| usable(k.get()))
+            .map(|doors| doors.iter().map(|d| d.get()).collect::<Vec<_>>())
+    };
+    assert_eq!(door_path(0, 0, 0, &all), Some(vec![]));
+    assert_eq!(door_path(0, 0, 1, &all), Some(vec![0]));
     // Through B (6.4 m between the zones' and doors' points) rather than the corridor (10.0 m).
-    assert_eq!(topology.door_path(0, 0, 2, all), Some(vec![0, 1]));
-    assert_eq!(topology.door_path(0, 2, 0, all), Some(vec![1, 0]));
+    assert_eq!(door_path(0, 0, 2, &all), Some(vec![0, 1]));
+    assert_eq!(door_path(0, 2, 0, &all), Some(vec![1, 0]));
     // B-C closed: round through the corridor.
-    assert_eq!(topology.door_path(0, 0, 2, |k| k != 1), Some(vec![2, 3]));
+    assert_eq!(door_path(0, 0, 2, &|k| k != 1), Some(vec![2, 3]));
     // C-D closed too: C cannot be reached; B still can.
-    assert_eq!(topology.door_path(0, 0, 2, |k| k != 1 && k != 3), None);
-    assert_eq!(
-        topology.door_path(0, 0, 1, |k| k != 1 && k != 3),
-        Some(vec![0])
-    );
+    assert_eq!(door_path(0, 0, 2, &|k| k != 1 && k != 3), None);
+    assert_eq!(door_path(0, 0, 1, &|k| k != 1 && k != 3), Some(vec![0]));
     // A storey or zone that does not exist.
-    assert_eq!(topology.door_path(1, 0, 2, all), None);
-    assert_eq!(topology.door_path(0, 0, 9, all), None);
+    assert_eq!(door_path(1, 0, 2, &all), None);
+    assert_eq!(door_path(0, 0, 9, &all), None);
     // Where a robot stands: inside a zone, else the nearest within 0.5 m.
     let index = ZoneIndex::new(&floor);
-    assert_eq!(zone_near(&floor, &index, DVec2::new(1.0, 1.0)), Some(0));
-    assert_eq!(zone_near(&floor, &index, DVec2::new(3.15, 2.5)), Some(1));
-    assert_eq!(zone_near(&floor, &index, DVec2::new(4.0, 3.4)), Some(1));
+    assert_eq!(
+        zone_near(&floor, &index, DVec2::new(1.0, 1.0)),
+        Some(ZoneIdx::new(0))
+    );
+    assert_eq!(
+        zone_near(&floor, &index, DVec2::new(3.15, 2.5)),
+        Some(ZoneIdx::new(1))
+    );
+    assert_eq!(
+        zone_near(&floor, &index, DVec2::new(4.0, 3.4)),
+        Some(ZoneIdx::new(1))
+    );
     assert_eq!(zone_near(&floor, &index, DVec2::new(4.0, 3.6)), None);
 }

@@ -9,8 +9,8 @@ use poinav_nav::{Floor, FloorObstacle, FloorZone, ObstacleKind};
 use poinav_poi::{RobotProfile, Role};
 use proptest::prelude::*;
 
-fn rect(lo: DVec2, hi: DVec2) -> Vec<DVec2> {
-    vec![lo, DVec2::new(hi.x, lo.y), hi, DVec2::new(lo.x, hi.y)]
+fn rect(lo: DVec2, hi: DVec2) -> poinav_nav::Ring {
+    poinav_nav::polygon::rect(lo.x, lo.y, hi.x, hi.y)
 }
 
 /// A `w` x `h` room at `at` inside 0.2 m walls.

@@ -518,12 +518,7 @@ fn a_site_is_cropped_away_and_a_storey_with_nothing_to_navigate_is_skipped() {
         id: class.into(),
         class: class.into(),
         kind: poinav_nav::ObstacleKind::Structure,
-        rings: vec![vec![
-            DVec2::new(x0, y0),
-            DVec2::new(x1, y0),
-            DVec2::new(x1, y1),
-            DVec2::new(x0, y1),
-        ]],
+        rings: vec![poinav_nav::polygon::rect(x0, y0, x1, y1)],
         roles: vec![],
     };
     let mut on_site = ground.clone();

@@ -40,12 +40,9 @@ fn setup(i: usize, start: DVec2, controller: ControllerSpec) -> RobotSetup {
 fn demo_robots(floor: &Floor, n: usize) -> Vec<RobotSetup> {
     let mut spots = Vec::new();
     for z in &floor.zones {
-        let (lo, hi) = z
-            .ring
-            .iter()
-            .fold((DVec2::INFINITY, DVec2::NEG_INFINITY), |(lo, hi), p| {
-                (lo.min(*p), hi.max(*p))
-            });
+        let Some((lo, hi)) = poinav_nav::polygon::bounds(&z.ring) else {
+            continue;
+        };
         let mut y = lo.y + 0.5;
         while y <= hi.y - 0.5 {
             let mut x = lo.x + 0.5;

@@ -15,7 +15,7 @@
 //! - B-1 zones cap the speed.
 
 use glam::DVec2;
-use poinav_nav::{polygon, DoorIdx, Floor, ZoneIdx};
+use poinav_nav::{polygon, DoorIdx, Floor, ObstacleIdx, ZoneIdx};
 use poinav_roles::runtime::{Observation, RuntimeChange};
 use poinav_roles::{CoordinationProtocol, Role};
 use serde::Deserialize;
@@ -582,7 +582,7 @@ pub fn perceive(
                 true
             }
             Target::Obstacle(o) => {
-                let rec = db.index(Element::Obstacle(o));
+                let rec = db.index(Element::Obstacle(ObstacleIdx::new(o as usize)));
                 let rr = db.roles(rec);
                 roles = roles.union(rr);
                 if rr.has(Role::PathGuidance) && ray.passages.is_empty() {

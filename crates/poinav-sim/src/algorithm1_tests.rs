@@ -17,7 +17,7 @@ fn close(a: f64, b: f64) -> bool {
 }
 
 /// An open floor with one more wall.
-fn open_with(id: &str, ring: Vec<DVec2>) -> Floor {
+fn open_with(id: &str, ring: poinav_nav::Ring) -> Floor {
     let mut f = open_floor(None);
     f.obstacles.push(wall(id, ring));
     f

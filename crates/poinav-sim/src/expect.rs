@@ -503,8 +503,10 @@ impl Judge {
                     Target::Obstacle(o) => {
                         hit.passages.is_empty()
                             && role.is_none_or(|role| {
-                                db.roles(db.index(crate::poi_db::Element::Obstacle(o)))
-                                    .has(role)
+                                db.roles(db.index(crate::poi_db::Element::Obstacle(
+                                    poinav_nav::ObstacleIdx::new(o as usize),
+                                )))
+                                .has(role)
                             })
                     }
                     _ => false,

@@ -4,7 +4,7 @@
 //! centroids) is `poinav-floor`'s `polygon`, ring first.
 
 use glam::DVec2;
-use poinav_nav::polygon::segment_distance;
+use poinav_nav::polygon::boundary_distance;
 
 /// Distance kept between bodies after a stop or a push-out, metres. Keeps touching bodies from
 /// counting as overlapping in the next test; far below anything the trace shows (1 µm).
@@ -220,9 +220,7 @@ pub fn polygon_gap(p: &[DVec2; 4], q: &[DVec2; 4]) -> f64 {
     let mut best = f64::INFINITY;
     for (a, b) in [(p, q), (q, p)] {
         for &v in a.iter() {
-            for k in 0..4 {
-                best = best.min(segment_distance(v, b[k], b[(k + 1) % 4]));
-            }
+            best = best.min(boundary_distance(b, v));
         }
     }
     best

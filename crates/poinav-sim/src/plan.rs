@@ -70,7 +70,7 @@ impl Plan {
 
     /// The zone holding `p`, else the nearest within 0.5 m ([`zone_near`]).
     pub fn zone_at(&self, floor: &Floor, p: DVec2) -> Option<ZoneIdx> {
-        zone_near(floor, &self.zones, p).map(ZoneIdx::new)
+        zone_near(floor, &self.zones, p)
     }
 
     /// Doors on the shortest way from `from` to zone `to`, in order
@@ -84,11 +84,10 @@ impl Plan {
         profile: &RobotProfile,
     ) -> Option<Vec<DoorIdx>> {
         let start = self.zone_at(floor, from)?;
-        let path = self.topology.door_path(0, start.get(), to.get(), |k| {
-            let d = &floor.doors[k];
+        self.topology.door_path(0, start, to, |k| {
+            let d = &floor.doors[k.get()];
             passable(door_status(d, profile).0, true) && d.clear_width_m >= profile.width_m
-        })?;
-        Some(path.into_iter().map(DoorIdx::new).collect())
+        })
     }
 
     /// Waypoints from `from` through `doors` to zone `to`'s goal: before and after every door

@@ -14,7 +14,7 @@ use poinav_roles::AccessibilityStatus;
 use crate::geometry::Obb;
 use crate::poi_db::Element;
 use crate::run::Outcome;
-use crate::trace::fixed;
+use poinav_io::number::fixed;
 
 /// Robot colours in order (Robot1 red, Robot2 blue as in the paper's figures).
 pub const COLOURS: [&str; 8] = [

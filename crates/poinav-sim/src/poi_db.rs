@@ -6,7 +6,7 @@
 use std::collections::BTreeMap;
 
 use poinav_nav::door_status::classified_status;
-use poinav_nav::{DoorIdx, Floor, ObstacleKind, ZoneIdx};
+use poinav_nav::{DoorIdx, Floor, ObstacleIdx, ObstacleKind, ZoneIdx};
 use poinav_roles::runtime::{self, Observation, RuntimeChange};
 use poinav_roles::{
     Accessibility, AccessibilityStatus, AppliesTo, Category, Coordination, PoiRecord, PoiType,
@@ -57,8 +57,8 @@ impl RoleSet {
 /// What kind of floor element a record describes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Element {
-    /// Floor obstacle `i`.
-    Obstacle(u32),
+    /// A floor obstacle.
+    Obstacle(ObstacleIdx),
     /// A floor door.
     Door(DoorIdx),
     /// A floor zone.
@@ -204,7 +204,7 @@ impl PoiDb {
     #[inline]
     pub fn index(&self, e: Element) -> usize {
         match e {
-            Element::Obstacle(i) => i as usize,
+            Element::Obstacle(i) => i.get(),
             Element::Door(i) => self.doors_at + i.get(),
             Element::Zone(i) => self.zones_at + i.get(),
         }

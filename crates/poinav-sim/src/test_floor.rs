@@ -2,7 +2,7 @@
 //! tests (Algorithm 1, the step, the controllers, the expectations).
 
 use glam::DVec2;
-use poinav_nav::{Floor, FloorDoor, FloorObstacle, FloorZone, ObstacleKind};
+use poinav_nav::{Floor, FloorDoor, FloorObstacle, FloorZone, ObstacleKind, Ring};
 use poinav_roles::{CoordinationProtocol, RobotProfile, Role};
 
 use crate::algorithm1::{self, Behaviour, Env, Mind, PendingClearance, Perception, Sink};
@@ -39,7 +39,7 @@ pub(crate) fn prepared(scenario: &crate::Scenario, variant: Option<&str>) -> Flo
 }
 
 /// A wall with one ring.
-pub(crate) fn wall(id: &str, ring: Vec<DVec2>) -> FloorObstacle {
+pub(crate) fn wall(id: &str, ring: Ring) -> FloorObstacle {
     FloorObstacle {
         id: id.into(),
         class: "IfcWall".into(),
@@ -52,7 +52,7 @@ pub(crate) fn wall(id: &str, ring: Vec<DVec2>) -> FloorObstacle {
 /// A zone with `roles` and an optional C-1 coordination.
 pub(crate) fn zone(
     id: &str,
-    ring: Vec<DVec2>,
+    ring: Ring,
     roles: Vec<Role>,
     coordination: Option<(f64, CoordinationProtocol)>,
 ) -> FloorZone {

@@ -3,6 +3,7 @@
 //! events), written as JSON Lines with fixed decimals so equal runs give equal bytes.
 
 use glam::DVec2;
+use poinav_io::number::{push_digits, push_fixed, push_int, Text};
 use poinav_nav::ZoneIdx;
 
 use crate::controller::{Command, Mode};
@@ -129,48 +130,6 @@ impl Json {
     }
 }
 
-/// Text being written: a `String` (the general [`Json`] writer) or bytes (trace lines).
-trait Text {
-    /// Appends `s`.
-    fn put(&mut self, s: &str);
-    /// Appends ASCII bytes.
-    fn put_ascii(&mut self, b: &[u8]);
-    /// Appends the first `n` bytes of `buf` (ASCII).
-    fn put_head<const N: usize>(&mut self, buf: &[u8; N], n: usize) {
-        self.put_ascii(&buf[..n]);
-    }
-}
-
-impl Text for String {
-    fn put(&mut self, s: &str) {
-        self.push_str(s);
-    }
-
-    fn put_ascii(&mut self, b: &[u8]) {
-        self.push_str(std::str::from_utf8(b).unwrap_or_default());
-    }
-}
-
-impl Text for Vec<u8> {
-    fn put(&mut self, s: &str) {
-        self.extend_from_slice(s.as_bytes());
-    }
-
-    fn put_ascii(&mut self, b: &[u8]) {
-        self.extend_from_slice(b);
-    }
-
-    /// The whole buffer copied, the tail cut off: a copy of a size known when compiling is a
-    /// few moves, one of a size known only when running a call to `memmove` (a quarter of the
-    /// trace's time went there).
-    #[inline]
-    fn put_head<const N: usize>(&mut self, buf: &[u8; N], n: usize) {
-        let len = self.len();
-        self.extend_from_slice(buf);
-        self.truncate(len + n.min(N));
-    }
-}
-
 /// A piece of text of at most [`Short::CAP`] bytes held in a fixed array, written with
 /// [`Text::put_head`]; longer text is kept as it is.
 #[derive(Debug, Clone)]
@@ -210,130 +169,6 @@ fn push_str<T: Text>(out: &mut T, s: &str) {
     } else {
         out.put(&serde_json::to_string(s).expect("strings serialise"));
     }
-}
-
-/// `v` with at most `decimals` decimals, deterministic: no `-0`, no trailing zeros.
-pub fn fixed(v: f64, decimals: usize) -> String {
-    let mut s = String::new();
-    push_fixed(&mut s, v, decimals);
-    s
-}
-
-const POW10: [f64; 7] = [1.0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6];
-const POW10_U64: [u64; 7] = [1, 10, 100, 1_000, 10_000, 100_000, 1_000_000];
-
-/// Two-digit pieces "00" to "99".
-const PAIRS: &[u8; 200] = b"\
-0001020304050607080910111213141516171819\
-2021222324252627282930313233343536373839\
-4041424344454647484950515253545556575859\
-6061626364656667686970717273747576777879\
-8081828384858687888990919293949596979899";
-
-/// Appends the decimal digits of `v`, zero-padded to at least `width` digits (at most 20),
-/// without the general formatter.
-fn push_digits<T: Text>(out: &mut T, mut v: u64, width: usize) {
-    // The digits end at `n` (the count, at least `width`): written from the back, then the
-    // buffer's head is appended.
-    let mut n = 1;
-    while n < 20 && v >= POW10_U64_ALL[n] {
-        n += 1;
-    }
-    let n = n.max(width.clamp(1, 20));
-    let mut buf = [b'0'; 20];
-    let mut i = n;
-    while v >= 100 {
-        let k = (v % 100) as usize * 2;
-        v /= 100;
-        i -= 2;
-        buf[i..i + 2].copy_from_slice(&PAIRS[k..k + 2]);
-    }
-    if v >= 10 {
-        let k = v as usize * 2;
-        i -= 2;
-        buf[i..i + 2].copy_from_slice(&PAIRS[k..k + 2]);
-    } else if v > 0 {
-        i -= 1;
-        buf[i] = b'0' + v as u8;
-    }
-    debug_assert!(buf[..i].iter().all(|&b| b == b'0'));
-    out.put_head(&buf, n);
-}
-
-/// Powers of ten up to 10^19.
-const POW10_U64_ALL: [u64; 20] = {
-    let mut p = [1u64; 20];
-    let mut k = 1;
-    while k < 20 {
-        p[k] = p[k - 1] * 10;
-        k += 1;
-    }
-    p
-};
-
-/// Appends `v` as `format!("{v}")` writes it.
-fn push_int<T: Text>(out: &mut T, v: i64) {
-    if v < 0 {
-        out.put_ascii(b"-");
-    }
-    push_digits(out, v.unsigned_abs(), 1);
-}
-
-/// Appends [`fixed`]`(v, decimals)` to `out`. The same digits as `format!("{v:.decimals$}")`
-/// (the exact binary value correctly rounded), trimmed; the common case without the general
-/// formatter: `v` scaled by `10^decimals` in `f64` is off the exact product by at most half an
-/// ulp, so when it is farther than that from a rounding boundary (half an integer) it rounds
-/// like the exact product, and the integer is printed.
-fn push_fixed<T: Text>(out: &mut T, v: f64, decimals: usize) {
-    if !v.is_finite() {
-        out.put_ascii(b"null");
-        return;
-    }
-    if decimals < POW10.len() {
-        let x = v * POW10[decimals];
-        if x.abs() < 1e15 {
-            // floor(x) without a libm call: truncation, one less below zero.
-            let t = x as i64;
-            let floor = if (t as f64) > x { t - 1 } else { t };
-            let frac = x - floor as f64;
-            let margin = x.abs() * 2.3e-16 + 1e-300;
-            if (frac - 0.5).abs() > margin {
-                // Not at a tie: rounding half away from zero is rounding to the nearer one.
-                let m = if frac > 0.5 { floor + 1 } else { floor };
-                if m == 0 {
-                    out.put_ascii(b"0");
-                    return;
-                }
-                if m < 0 {
-                    out.put_ascii(b"-");
-                }
-                let m = m.unsigned_abs();
-                let p = POW10_U64[decimals];
-                push_digits(out, m / p, 1);
-                let mut f = m % p;
-                if f != 0 {
-                    let mut digits = decimals;
-                    while f % 10 == 0 {
-                        f /= 10;
-                        digits -= 1;
-                    }
-                    out.put_ascii(b".");
-                    push_digits(out, f, digits);
-                }
-                return;
-            }
-        }
-    }
-    let mut s = format!("{v:.decimals$}");
-    if s.contains('.') {
-        while s.ends_with('0') {
-            s.pop();
-        }
-        if s.ends_with('.') {
-            s.pop();
-        }
-    }
-    out.put(if s == "-0" { "0" } else { &s });
 }
 
 /// One robot in one step.
@@ -743,45 +578,7 @@ mod tests {
     }
 
     #[test]
-    fn integers_are_written_as_the_general_formatter_writes_them() {
-        let mut seed = 0x0123_4567_89AB_CDEFu64;
-        let mut values = vec![
-            0i64,
-            1,
-            -1,
-            9,
-            10,
-            -10,
-            99,
-            100,
-            i64::MAX,
-            i64::MIN,
-            1 << 53,
-        ];
-        for _ in 0..10_000 {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            values.push((seed as i64) >> (seed % 63));
-        }
-        for v in values {
-            let mut s = String::new();
-            push_int(&mut s, v);
-            assert_eq!(s, v.to_string());
-            assert_eq!(s, serde_json::to_string(&v).unwrap());
-        }
-        let mut s = String::new();
-        push_digits(&mut s, 42, 5);
-        assert_eq!(s, "00042");
-    }
-
-    #[test]
     fn numbers_are_fixed_and_signless_at_zero() {
-        assert_eq!(fixed(-0.0000001, 6), "0");
-        assert_eq!(fixed(1.5, 6), "1.5");
-        assert_eq!(fixed(2.0, 6), "2");
-        assert_eq!(fixed(-3.1234567, 6), "-3.123457");
-        assert_eq!(fixed(f64::NAN, 6), "null");
         let mut j = Json::default();
         j.begin_object();
         j.key("a").num(1.0, 3);
@@ -790,77 +587,5 @@ mod tests {
         j.end_array();
         j.end_object();
         assert_eq!(j.finish(), r#"{"a":1,"b":["x\"y",null]}"#);
-    }
-
-    /// The general formatter's digits, trimmed (what `fixed` wrote before its fast path).
-    fn reference(v: f64, decimals: usize) -> String {
-        if !v.is_finite() {
-            return "null".into();
-        }
-        let mut s = format!("{v:.decimals$}");
-        if s.contains('.') {
-            while s.ends_with('0') {
-                s.pop();
-            }
-            if s.ends_with('.') {
-                s.pop();
-            }
-        }
-        if s == "-0" {
-            s = "0".into();
-        }
-        s
-    }
-
-    #[test]
-    fn fast_fixed_numbers_equal_the_general_formatter() {
-        let mut seed = 0x9E37_79B9_7F4A_7C15u64;
-        let mut next = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed
-        };
-        for k in 0..400_000 {
-            let r = next();
-            let v = match k % 4 {
-                // Any magnitude.
-                0 => f64::from_bits(r),
-                // Poses and speeds.
-                1 => (r >> 11) as f64 / (1u64 << 53) as f64 * 200.0 - 100.0,
-                // Halves and exact decimals: the rounding boundaries.
-                2 => ((r % 2_000_001) as f64 - 1_000_000.0) / 2f64.powi((r >> 40) as i32 % 12),
-                _ => ((r % 20_000_001) as f64 - 10_000_000.0) * 1e-7,
-            };
-            for d in [0usize, 3, 4, 6] {
-                assert_eq!(fixed(v, d), reference(v, d), "{v:e} with {d} decimals");
-            }
-        }
-        for v in [
-            0.5,
-            1.5,
-            2.5,
-            -0.5,
-            0.0000005,
-            0.0000015,
-            1e15,
-            -1e-300,
-            5e-7,
-            -5e-7,
-            -0.0,
-            1e-7,
-            -1e-7,
-            123456789.123456,
-            -999999999.9999995,
-            -2.5e14,
-            9.2e18,
-            -1.7e308,
-            -3.0,
-            7.0,
-        ] {
-            for d in [0usize, 3, 4, 6] {
-                assert_eq!(fixed(v, d), reference(v, d), "{v:e} with {d} decimals");
-            }
-        }
     }
 }

@@ -719,7 +719,8 @@ mod tests {
                     DVec2::new(c.x + h.x, c.y - h.y),
                     c + h,
                     DVec2::new(c.x - h.x, c.y + h.y),
-                ]],
+                ]
+                .into()],
                 roles: vec![],
             });
         }

@@ -13,12 +13,7 @@ fn wall(id: &str, x0: f64, y0: f64, x1: f64, y1: f64) -> FloorObstacle {
         id: id.into(),
         class: "IfcWall".into(),
         kind: ObstacleKind::Structure,
-        rings: vec![vec![
-            DVec2::new(x0, y0),
-            DVec2::new(x1, y0),
-            DVec2::new(x1, y1),
-            DVec2::new(x0, y1),
-        ]],
+        rings: vec![poinav_nav::polygon::rect(x0, y0, x1, y1)],
         // No A-1: nothing slows the robots down before they hit.
         roles: vec![],
     }

@@ -5,7 +5,7 @@
 //! drives into free space.
 
 use glam::DVec2;
-use poinav_nav::polygon::{contains, segment_distance, signed_area};
+use poinav_nav::polygon::{contains, line_crossing, segment_distance, signed_area};
 use poinav_nav::Floor;
 use poinav_roles::RobotProfile;
 use poinav_sim::controller::{ControllerSpec, KeyScheme};
@@ -30,16 +30,10 @@ const RAY_MAX_M: f64 = 20.0;
 fn ray_distance(segments: &[(DVec2, DVec2)], p: DVec2, d: DVec2) -> f64 {
     let mut best = RAY_MAX_M;
     for &(a, b) in segments {
-        let e = b - a;
-        let den = d.perp_dot(e);
-        if den.abs() < 1e-12 {
-            continue;
-        }
-        let w = a - p;
-        let t = w.perp_dot(e) / den;
-        let u = w.perp_dot(d) / den;
-        if t >= 0.0 && (0.0..=1.0).contains(&u) {
-            best = best.min(t);
+        if let Some((t, u)) = line_crossing(p, d, a, b) {
+            if t >= 0.0 && (0.0..=1.0).contains(&u) {
+                best = best.min(t);
+            }
         }
     }
     best
@@ -78,10 +72,9 @@ type Segment = (DVec2, DVec2);
 /// Candidate start points of `zone` with their room (distance to the nearest wall or obstacle
 /// edge), most room first, and the wall segments near the zone.
 fn spots(floor: &Floor, zone: &poinav_nav::FloorZone) -> (Vec<Spot>, Vec<Segment>) {
-    let (lo, hi) = zone.ring.iter().fold(
-        (DVec2::splat(f64::MAX), DVec2::splat(f64::MIN)),
-        |(lo, hi), p| (lo.min(*p), hi.max(*p)),
-    );
+    let Some((lo, hi)) = poinav_nav::polygon::bounds(&zone.ring) else {
+        return (Vec::new(), Vec::new());
+    };
     let size = hi - lo;
     if !(size.x.is_finite() && size.y.is_finite()) {
         return (Vec::new(), Vec::new());
@@ -114,7 +107,7 @@ fn spots(floor: &Floor, zone: &poinav_nav::FloorZone) -> (Vec<Spot>, Vec<Segment
             }
             let d = segments
                 .iter()
-                .map(|&(a, b)| segment_distance(p, a, b))
+                .map(|&(a, b)| segment_distance(a, b, p))
                 .fold(f64::MAX, f64::min);
             candidates.push((d, p));
         }

@@ -42,7 +42,7 @@ fn full_access_doors_are_open_and_blocked_doors_closed_in_every_corpus_grid() {
             let label = format!("{name}: door {} {:?}", node.element, node.name);
             // Doors with IfcRelSpaceBoundary: the sides are those spaces (one: an entrance).
             let floor = &building.floors[sides.floor];
-            if let Some(spaces) = &floor.doors[sides.door].spaces {
+            if let Some(spaces) = &floor.doors[sides.door.get()].spaces {
                 let present = spaces
                     .iter()
                     .filter(|s| floor.zones.iter().any(|z| &z.id == *s))
@@ -53,7 +53,7 @@ fn full_access_doors_are_open_and_blocked_doors_closed_in_every_corpus_grid() {
                         .zones
                         .iter()
                         .flatten()
-                        .map(|&z| floor.zones[z].id.as_str())
+                        .map(|&z| floor.zones[z.get()].id.as_str())
                         .collect();
                     // One-sided boundaries: the other side is the space geometry finds
                     // behind the door, if any.
@@ -76,14 +76,14 @@ fn full_access_doors_are_open_and_blocked_doors_closed_in_every_corpus_grid() {
                 let mut names: Vec<Option<&str>> = sides
                     .zones
                     .iter()
-                    .map(|z| z.map(|z| floor.zones[z].name.as_deref().unwrap_or("?")))
+                    .map(|z| z.map(|z| floor.zones[z.get()].name.as_deref().unwrap_or("?")))
                     .collect();
                 names.sort();
                 assert_eq!(names, [None, Some("1")], "{label}");
                 assert!(nav.open[node.id], "{label}: {}", nav.closed_reason(node.id));
             }
             let mapped = sides.zones.iter().any(Option::is_some);
-            if floor.doors[sides.door].doorless {
+            if floor.doors[sides.door.get()].doorless {
                 // A doorway (an opening no door fills): open where nothing stands in it, else
                 // closed naming what does (office-a's lift doors, IfcFlowTerminal).
                 let reason = nav.closed_reason(node.id);
@@ -112,7 +112,7 @@ fn full_access_doors_are_open_and_blocked_doors_closed_in_every_corpus_grid() {
                         // The robot can stand on the apron outside it.
                         let grid = &nav.floors[sides.floor].grid;
                         let outside = sides.outside_side().unwrap();
-                        let on_apron = grid.occupancy.doors[sides.door].frame.and_then(|f| {
+                        let on_apron = grid.occupancy.doors[sides.door.get()].frame.and_then(|f| {
                             let p = f.center + f.normal * outside * (f.half_depth + 0.5);
                             grid.nearest_traversable(p, 0.55)
                         });
@@ -135,10 +135,8 @@ fn full_access_doors_are_open_and_blocked_doors_closed_in_every_corpus_grid() {
                     } else if !nav.grid_passable[node.id] {
                         problems.push(format!(
                             "{label} (sides {:?}) is FULL_ACCESS but closed in the grid: {}",
-                            sides
-                                .zones
-                                .map(|z| z
-                                    .map(|z| building.floors[sides.floor].zones[z].name.clone())),
+                            sides.zones.map(|z| z
+                                .map(|z| building.floors[sides.floor].zones[z.get()].name.clone())),
                             nav.closed_reason(node.id)
                         ));
                     }

@@ -198,11 +198,15 @@ fn measure(file: &str, options: &NavOptions, cache: &mut Cache) -> Measured {
         if status == AccessibilityStatus::FullAccess {
             full_access += 1;
         }
-        let (a, b) = (first_region(sides.floor, a), first_region(sides.floor, b));
+        let (a, b) = (
+            first_region(sides.floor, a.get()),
+            first_region(sides.floor, b.get()),
+        );
         if a == b {
             continue;
         }
-        if !nav.grid_passable[sides.node] && building.floors[sides.floor].doors[sides.door].doorless
+        if !nav.grid_passable[sides.node]
+            && building.floors[sides.floor].doors[sides.door.get()].doorless
         {
             // A doorway with something standing in it (office-a's lift doors): named.
             assert!(
@@ -216,7 +220,7 @@ fn measure(file: &str, options: &NavOptions, cache: &mut Cache) -> Measured {
             // Wider than the robot by less than a cell: no row of cell centres may run close
             // enough to the door's axis. Then either another way joins the two spaces or the
             // route's error names this door.
-            let d = &building.floors[sides.floor].doors[sides.door];
+            let d = &building.floors[sides.floor].doors[sides.door.get()];
             let width = d.clear_width_m;
             marginal.push(format!(
                 "{} ({width:.3} m)",
@@ -396,7 +400,8 @@ fn routes_from_outside_enter_by_an_entrance_within_5_percent() {
             assert!(
                 t.doors
                     .iter()
-                    .any(|d| d.exterior() && building.floors[d.floor].doors[d.door].id == first.id),
+                    .any(|d| d.exterior()
+                        && building.floors[d.floor].doors[d.door.get()].id == first.id),
                 "{file}: outside -> {:?} enters by {:?}",
                 zone.name,
                 first.name

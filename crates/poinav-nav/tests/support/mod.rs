@@ -10,10 +10,10 @@ use poinav_author::DemoBuilding;
 use poinav_nav::building::width_status;
 use poinav_nav::building::{ConnectionKind, Landing, VerticalConnection};
 pub use poinav_nav::polygon::rect;
-use poinav_nav::{Building, Floor, FloorDoor, FloorObstacle, FloorZone, ObstacleKind};
+use poinav_nav::{Building, Floor, FloorDoor, FloorObstacle, FloorZone, ObstacleKind, Ring};
 use poinav_poi::{AccessibilityStatus, CoordinationProtocol, RobotProfile, Role};
 
-pub fn wall(id: &str, rings: Vec<Vec<DVec2>>) -> FloorObstacle {
+pub fn wall(id: &str, rings: Vec<Ring>) -> FloorObstacle {
     FloorObstacle {
         id: id.into(),
         class: "IfcWall".into(),
@@ -24,7 +24,7 @@ pub fn wall(id: &str, rings: Vec<Vec<DVec2>>) -> FloorObstacle {
 }
 
 /// A door in the ring `ring` as the enrichment would classify it for the paper robot.
-pub fn door(id: &str, name: &str, ring: Vec<DVec2>, clear_width_m: f64) -> FloorDoor {
+pub fn door(id: &str, name: &str, ring: Ring, clear_width_m: f64) -> FloorDoor {
     let profile = RobotProfile::paper();
     let (status, _) = width_status(clear_width_m, &profile);
     let mut roles = vec![Role::Transition];
@@ -47,7 +47,7 @@ pub fn door(id: &str, name: &str, ring: Vec<DVec2>, clear_width_m: f64) -> Floor
     }
 }
 
-pub fn room(id: &str, name: &str, ring: Vec<DVec2>) -> FloorZone {
+pub fn room(id: &str, name: &str, ring: Ring) -> FloorZone {
     FloorZone {
         id: id.into(),
         name: Some(name.into()),
@@ -58,7 +58,7 @@ pub fn room(id: &str, name: &str, ring: Vec<DVec2>) -> FloorZone {
     }
 }
 
-pub fn corridor(id: &str, name: &str, ring: Vec<DVec2>) -> FloorZone {
+pub fn corridor(id: &str, name: &str, ring: Ring) -> FloorZone {
     FloorZone {
         id: id.into(),
         name: Some(name.into()),
@@ -78,7 +78,7 @@ fn wall_with_gaps(
     from: f64,
     to: f64,
     gaps: &[(f64, f64)],
-) -> Vec<Vec<DVec2>> {
+) -> Vec<Ring> {
     let mut gaps: Vec<(f64, f64)> = gaps
         .iter()
         .map(|(c, w)| (c - w / 2.0, c + w / 2.0))
@@ -175,7 +175,7 @@ pub fn demo() -> Floor {
 /// Every coordinate turned by `angle` radians about the origin.
 pub fn rotated(floor: &Floor, angle: f64) -> Floor {
     let r = DVec2::from_angle(angle);
-    let turn = |ring: &Vec<DVec2>| ring.iter().map(|p| r.rotate(*p)).collect::<Vec<_>>();
+    let turn = |ring: &Ring| ring.iter().map(|p| r.rotate(*p)).collect::<Ring>();
     let mut f = floor.clone();
     for o in &mut f.obstacles {
         o.rings = o.rings.iter().map(turn).collect();

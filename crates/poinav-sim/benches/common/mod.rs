@@ -5,7 +5,7 @@
 #![allow(dead_code)]
 
 use glam::DVec2;
-use poinav_nav::polygon::{contains, segment_distance};
+use poinav_nav::polygon::{boundary_distance, contains, segment_distance};
 use poinav_nav::Floor;
 use poinav_poi::{RobotProfile, RuleSet};
 
@@ -71,24 +71,19 @@ pub fn free_spots(floor: &Floor, spacing: f64, clear: f64) -> Vec<DVec2> {
     let edges = obstacle_edges(floor);
     let mut spots = Vec::new();
     for z in &floor.zones {
-        let (lo, hi) = z
-            .ring
-            .iter()
-            .fold((DVec2::INFINITY, DVec2::NEG_INFINITY), |(lo, hi), p| {
-                (lo.min(*p), hi.max(*p))
-            });
-        let n = z.ring.len();
+        let Some((lo, hi)) = poinav_nav::polygon::bounds(&z.ring) else {
+            continue;
+        };
         let mut y = lo.y + clear;
         while y <= hi.y - clear {
             let mut x = lo.x + clear;
             while x <= hi.x - clear {
                 let p = DVec2::new(x, y);
-                let inside = contains(&z.ring, p)
-                    && (0..n).all(|i| segment_distance(p, z.ring[i], z.ring[(i + 1) % n]) >= clear);
+                let inside = contains(&z.ring, p) && boundary_distance(&z.ring, p) >= clear;
                 let free = inside
                     && edges
                         .iter()
-                        .all(|&(a, b)| segment_distance(p, a, b) >= clear)
+                        .all(|&(a, b)| segment_distance(a, b, p) >= clear)
                     && !floor
                         .obstacles
                         .iter()
@@ -123,7 +118,7 @@ pub fn open_floor(n: usize) -> (Floor, Vec<poinav_sim::RobotSetup>) {
     let side = (n as f64).sqrt().ceil() as usize;
     let size = side as f64 * 3.0 + 4.0;
     use poinav_nav::polygon::rect;
-    let obstacle = |id: String, ring: Vec<DVec2>| FloorObstacle {
+    let obstacle = |id: String, ring: poinav_nav::Ring| FloorObstacle {
         id: id.into(),
         class: "IfcWall".into(),
         kind: ObstacleKind::Structure,

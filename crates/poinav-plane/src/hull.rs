@@ -1,65 +1,7 @@
-//! Plane polygons (`&[DVec2]`, implicitly closed): area, orientation, convex hull, minimum-area
-//! bounding rectangle by rotating calipers, point containment and distance.
+//! Convex hulls (Andrew's monotone chain after an Akl-Toussaint cull) and the minimum-area
+//! enclosing rectangle by rotating calipers.
 
 use glam::DVec2;
-
-/// Signed area: positive for counter-clockwise polygons.
-pub fn signed_area(poly: &[DVec2]) -> f64 {
-    let n = poly.len();
-    if n < 3 {
-        return 0.0;
-    }
-    // Shift to the first point so large world coordinates lose no precision.
-    let o = poly[0];
-    (0..n)
-        .map(|i| (poly[i] - o).perp_dot(poly[(i + 1) % n] - o))
-        .sum::<f64>()
-        / 2.0
-}
-
-/// The smallest axis-aligned box around the points, as (min, max).
-pub fn bounds(points: &[DVec2]) -> (DVec2, DVec2) {
-    points.iter().fold(
-        (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
-        |(lo, hi), &p| (lo.min(p), hi.max(p)),
-    )
-}
-
-/// Drops repeated points (the closing one too) and makes the polygon counter-clockwise;
-/// `None` when fewer than three points remain, a point is not finite, or it has no area.
-pub fn clean(points: Vec<DVec2>) -> Option<Vec<DVec2>> {
-    let (lo, hi) = bounds(&points);
-    let mut out = without_repeats(points)?;
-    let a = signed_area(&out);
-    let extent = (hi - lo).max_element();
-    if a.abs() <= 1e-12 * extent * extent {
-        return None;
-    }
-    if a < 0.0 {
-        out.reverse();
-    }
-    Some(out)
-}
-
-/// The ring without repeated points (within a billionth of its extent; the closing point
-/// too); `None` when fewer than three points remain or a point is not finite.
-pub fn without_repeats(points: Vec<DVec2>) -> Option<Vec<DVec2>> {
-    if points.iter().any(|p| !p.is_finite()) {
-        return None;
-    }
-    let (lo, hi) = bounds(&points);
-    let eps = 1e-9 * (hi - lo).max_element().max(1e-300);
-    let mut out: Vec<DVec2> = Vec::with_capacity(points.len());
-    for p in points {
-        if out.last().is_none_or(|q| q.distance(p) > eps) {
-            out.push(p);
-        }
-    }
-    while out.len() > 1 && out[0].distance(*out.last().expect("non-empty")) <= eps {
-        out.pop();
-    }
-    (out.len() >= 3).then_some(out)
-}
 
 /// The convex hull, counter-clockwise, without collinear points (Andrew's monotone chain).
 /// Fewer than three distinct points give those points.
@@ -190,75 +132,10 @@ pub fn min_area_rectangle(points: &[DVec2]) -> Option<Rectangle> {
     best.map(|(_, r)| r)
 }
 
-/// True when `p` is inside the polygon or on its boundary (even-odd rule).
-pub fn contains(poly: &[DVec2], p: DVec2) -> bool {
-    let n = poly.len();
-    if n < 3 {
-        return false;
-    }
-    if distance_to_boundary(poly, p) <= 1e-12 * p.length().max(1.0) {
-        return true;
-    }
-    let mut inside = false;
-    for i in 0..n {
-        let (a, b) = (poly[i], poly[(i + 1) % n]);
-        if (a.y > p.y) != (b.y > p.y) {
-            let x = a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x);
-            if p.x < x {
-                inside = !inside;
-            }
-        }
-    }
-    inside
-}
-
-/// Distance from `p` to the nearest edge of the polygon.
-pub fn distance_to_boundary(poly: &[DVec2], p: DVec2) -> f64 {
-    let n = poly.len();
-    if n == 0 {
-        return f64::INFINITY;
-    }
-    (0..n)
-        .map(|i| segment_distance(poly[i], poly[(i + 1) % n], p))
-        .fold(f64::INFINITY, f64::min)
-}
-
-fn segment_distance(a: DVec2, b: DVec2, p: DVec2) -> f64 {
-    let ab = b - a;
-    let len2 = ab.length_squared();
-    let t = if len2 > 0.0 {
-        ((p - a).dot(ab) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    p.distance(a + ab * t)
-}
-
-/// The area centroid (the mean of the vertices when the polygon has no area).
-pub fn centroid(poly: &[DVec2]) -> DVec2 {
-    let n = poly.len();
-    if n == 0 {
-        return DVec2::ZERO;
-    }
-    let o = poly[0];
-    let (mut a, mut c) = (0.0, DVec2::ZERO);
-    for i in 0..n {
-        let (p, q) = (poly[i] - o, poly[(i + 1) % n] - o);
-        let w = p.perp_dot(q);
-        a += w;
-        c += (p + q) * w;
-    }
-    let (lo, hi) = bounds(poly);
-    let extent = (hi - lo).max_element();
-    if a.abs() <= 1e-12 * extent * extent {
-        return poly.iter().copied().sum::<DVec2>() / n as f64;
-    }
-    o + c / (3.0 * a)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::measure::{contains_closed, signed_area};
     use proptest::prelude::*;
 
     fn rotated_rectangle(l: f64, w: f64, angle_deg: f64, at: DVec2) -> Vec<DVec2> {
@@ -277,27 +154,6 @@ mod tests {
         assert!((r.area() - 20.0).abs() < 1e-9);
         assert!((r.center - DVec2::new(3.0, -7.0)).length() < 1e-9);
         assert!(r.direction.dot(DVec2::from_angle(30f64.to_radians())).abs() > 1.0 - 1e-12);
-    }
-
-    #[test]
-    fn point_in_polygon_for_an_l_shape() {
-        let l = [
-            DVec2::new(0.0, 0.0),
-            DVec2::new(4.0, 0.0),
-            DVec2::new(4.0, 1.0),
-            DVec2::new(1.0, 1.0),
-            DVec2::new(1.0, 3.0),
-            DVec2::new(0.0, 3.0),
-        ];
-        assert!(contains(&l, DVec2::new(0.5, 2.5)));
-        assert!(contains(&l, DVec2::new(3.5, 0.5)));
-        assert!(!contains(&l, DVec2::new(2.0, 2.0)), "in the notch");
-        assert!(contains(&l, DVec2::new(4.0, 0.5)), "on the boundary");
-        assert!(!contains(&l, DVec2::new(-0.1, 0.5)));
-        assert!((distance_to_boundary(&l, DVec2::new(2.0, 2.0)) - 1.0).abs() < 1e-12);
-        assert_eq!(signed_area(&l), 6.0);
-        let c = centroid(&l);
-        assert!(contains(&l, c));
     }
 
     #[test]
@@ -345,7 +201,7 @@ mod tests {
             prop_assert!((r.length - l.max(w)).abs() <= 1e-6 * l.max(w));
             let hull = convex_hull(&rect);
             prop_assert!((signed_area(&hull) - l * w).abs() <= 1e-6 * l * w);
-            prop_assert!(contains(&rect, DVec2::new(x, y)));
+            prop_assert!(contains_closed(&rect, DVec2::new(x, y)));
         }
     }
 }
