@@ -192,40 +192,50 @@ pub fn type_object<'m>(e: Entity<'m>) -> Option<Entity<'m>> {
     rels.filter_map(|r| r.get_ref("RelatingType")).next()
 }
 
-/// All IfcPropertySets of `e`, type sets merged under the occurrence's by set and property name.
-pub fn property_sets(e: Entity<'_>) -> Vec<PropertySet> {
-    let mut sets: Vec<PropertySet> = Vec::new();
+/// The IfcPropertySets that [`property_sets`] merges for `e`, in its order: its type's
+/// (`true`), then its own (`false`).
+pub fn set_definitions<'m>(e: Entity<'m>) -> impl Iterator<Item = (Entity<'m>, bool)> {
     let from_type = type_definitions(e).into_iter().map(|d| (d, true));
     let own = own_definitions(e).into_iter().map(|d| (d, false));
-    for (def, is_type) in from_type.chain(own) {
-        if !def.is_a("IfcPropertySet") {
-            continue;
-        }
-        let name = def.name().unwrap_or_default();
-        let props: Vec<Property> = def
+    from_type
+        .chain(own)
+        .filter(|(d, _)| d.is_a("IfcPropertySet"))
+}
+
+/// One IfcPropertySet as written, not merged with any other.
+pub fn read_set(def: Entity<'_>, from_type: bool) -> PropertySet {
+    PropertySet {
+        id: def.id(),
+        name: def.name().unwrap_or_default(),
+        from_type,
+        properties: def
             .get_refs("HasProperties")
             .into_iter()
             .map(|p| property(p, 0))
-            .collect();
-        match sets.iter_mut().find(|s| s.name == name) {
+            .collect(),
+    }
+}
+
+/// All IfcPropertySets of `e`, type sets merged under the occurrence's by set and property name.
+/// Where no two of [`set_definitions`] share a name, these are their [`read_set`]s as they are.
+pub fn property_sets(e: Entity<'_>) -> Vec<PropertySet> {
+    let mut sets: Vec<PropertySet> = Vec::new();
+    for (def, is_type) in set_definitions(e) {
+        let read = read_set(def, is_type);
+        match sets.iter_mut().find(|s| s.name == read.name) {
             Some(set) => {
                 if !is_type {
-                    set.id = def.id();
+                    set.id = read.id;
                     set.from_type = false;
                 }
-                for p in props {
+                for p in read.properties {
                     match set.properties.iter_mut().find(|q| q.name == p.name) {
                         Some(q) => *q = p,
                         None => set.properties.push(p),
                     }
                 }
             }
-            None => sets.push(PropertySet {
-                id: def.id(),
-                name,
-                from_type: is_type,
-                properties: props,
-            }),
+            None => sets.push(read),
         }
     }
     sets
