@@ -3,7 +3,8 @@
 //! further product.
 
 use poinav_ifc::property::{
-    property_sets, read_set, set_definitions, PropertySet, PropertyValue, Scalar, TypedScalar,
+    property_sets, read_set_untyped, set_definitions, PropertySet, PropertyValue, Scalar,
+    TypedScalar,
 };
 use poinav_ifc::{Entity, EntityId};
 use pyo3::prelude::*;
@@ -185,13 +186,15 @@ impl AllSets {
             .filter(|d| seen.insert(d.id()))
             .copied()
             .collect();
-        // `from_type` is not part of the dicts; the set is read alike either way.
+        // Neither `from_type` nor the values' IFC type names are part of the dicts.
         let read: FxHashMap<EntityId, PropertySet> = distinct
             .par_iter()
-            .map(|d| (d.id(), read_set(*d, false)))
+            .map(|d| (d.id(), read_set_untyped(*d, false)))
             .collect();
+        // Comparing names is little work: on one thread (a parallel pass costs more in
+        // rayon's hand-offs on a small model); merged sets are rare.
         let products = defs
-            .into_par_iter()
+            .into_iter()
             .map(|(e, g, d)| {
                 let names_differ = d.iter().enumerate().all(|(i, a)| {
                     d[..i]
