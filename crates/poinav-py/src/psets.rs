@@ -10,7 +10,7 @@ use poinav_ifc::{Entity, EntityId};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyString};
 use rayon::prelude::*;
-use rustc_hash::{FxHashMap, FxHashSet};
+use rustc_hash::FxHashMap;
 
 use crate::convert::{self, Strings};
 
@@ -152,8 +152,8 @@ fn immutable(v: &PropertyValue) -> bool {
 /// one where a type's set and its own share a name (merged) is read by `property_sets`.
 #[derive(Debug, Default)]
 pub struct AllSets {
-    /// The sets read once, by `#id`.
-    read: FxHashMap<EntityId, PropertySet>,
+    /// The sets read once.
+    read: Vec<PropertySet>,
     /// Per product: its GlobalId and sets.
     products: Vec<(String, ProductSets)>,
 }
@@ -161,8 +161,8 @@ pub struct AllSets {
 /// One product's property sets.
 #[derive(Debug)]
 enum ProductSets {
-    /// Sets of `AllSets::read`, by `#id`, in order.
-    Read(Vec<EntityId>),
+    /// Sets of `AllSets::read`, by index, in order.
+    Read(Vec<usize>),
     /// Merged sets of this product alone.
     Merged(Vec<PropertySet>),
 }
@@ -179,30 +179,40 @@ impl AllSets {
                 Some((*e, g, set_definitions(*e).map(|(d, _)| d).collect()))
             })
             .collect();
-        let mut seen = FxHashSet::default();
-        let distinct: Vec<Entity<'_>> = defs
-            .iter()
-            .flat_map(|(_, _, d)| d)
-            .filter(|d| seen.insert(d.id()))
-            .copied()
+        // Each product's sets as indices into the distinct ones, in first-seen order.
+        let mut index = FxHashMap::default();
+        let mut distinct: Vec<Entity<'_>> = Vec::new();
+        let defs: Vec<(Entity<'_>, String, Vec<usize>)> = defs
+            .into_iter()
+            .map(|(e, g, d)| {
+                let d = d
+                    .into_iter()
+                    .map(|d| {
+                        *index.entry(d.id()).or_insert_with(|| {
+                            distinct.push(d);
+                            distinct.len() - 1
+                        })
+                    })
+                    .collect();
+                (e, g, d)
+            })
             .collect();
         // Neither `from_type` nor the values' IFC type names are part of the dicts.
-        let read: FxHashMap<EntityId, PropertySet> = distinct
+        let read: Vec<PropertySet> = distinct
             .par_iter()
-            .map(|d| (d.id(), read_set_untyped(*d, false)))
+            .map(|d| read_set_untyped(*d, false))
             .collect();
         // Comparing names is little work: on one thread (a parallel pass costs more in
         // rayon's hand-offs on a small model); merged sets are rare.
         let products = defs
             .into_iter()
             .map(|(e, g, d)| {
-                let names_differ = d.iter().enumerate().all(|(i, a)| {
-                    d[..i]
-                        .iter()
-                        .all(|b| read[&a.id()].name != read[&b.id()].name)
-                });
+                let names_differ = d
+                    .iter()
+                    .enumerate()
+                    .all(|(i, &a)| d[..i].iter().all(|&b| read[a].name != read[b].name));
                 let sets = if names_differ {
-                    ProductSets::Read(d.iter().map(|d| d.id()).collect())
+                    ProductSets::Read(d)
                 } else {
                     ProductSets::Merged(property_sets(e))
                 };
@@ -217,7 +227,7 @@ impl AllSets {
         self.products
             .iter()
             .map(|(_, s)| match s {
-                ProductSets::Read(ids) => ids.len(),
+                ProductSets::Read(sets) => sets.len(),
                 ProductSets::Merged(sets) => sets.len(),
             })
             .sum()
@@ -236,7 +246,7 @@ pub fn psets<'py>(py: Python<'py>, all: &AllSets) -> PyResult<Bound<'py, PyDict>
             d.set_item(name, dict)
         };
         match sets {
-            ProductSets::Read(ids) => ids.iter().try_for_each(|id| add(&all.read[id]))?,
+            ProductSets::Read(sets) => sets.iter().try_for_each(|&i| add(&all.read[i]))?,
             ProductSets::Merged(sets) => sets.iter().try_for_each(&mut add)?,
         }
         out.set_item(gid, d)?;
