@@ -144,7 +144,8 @@ fn immutable(v: &PropertyValue) -> bool {
 }
 
 /// The property sets of every instance of a class with a GlobalId, as `property_sets` gives
-/// them, each distinct IfcPropertySet read once.
+/// them but without the values' IFC type names (`read_set_untyped`: the dicts do not give
+/// them), each distinct IfcPropertySet read once.
 ///
 /// A set related to many products (and a type's sets, which every occurrence of the type
 /// gets) would otherwise be read, decoded and freed again for every product: 39 % of
