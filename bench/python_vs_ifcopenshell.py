@@ -8,15 +8,19 @@ Usage: python bench/python_vs_ifcopenshell.py [FILE...] [--rounds N] [--ifcos-ro
 Run it with a Python that has the poinav wheel (a release build: `maturin build --release`),
 numpy and IfcOpenShell installed. FILE defaults to fzk-haus-ifc4.ifc, duplex-apartment.ifc
 and office-a.ifc from the corpus ($POINAV_SHARED/ifc, else ../shared/ifc). Per file, N rounds
-(default 9, after one untimed warm-up round) of the wheel and the library in pairs, their order
-swapped every round, so that machine noise hits both alike; then M rounds (default 3) of
+(default 9, after one untimed warm-up round) of the wheel and the library in turn, their order
+rotated every round, so that machine noise hits all alike; then M rounds (default 3) of
 IfcOpenShell, apart (its large heap, given back, made whoever ran next pay for fresh pages):
 
   psets    poinav      poinav.open(FILE).psets(): every IfcProduct's property sets as dicts
            rust        the same library calls in Rust, no Python objects (_native.bench_psets):
                        Model::open and property_sets of every product with a GlobalId, in
                        parallel as the wheel does, giving the same owned values (names and
-                       texts as Strings) that the wheel turns into Python objects, then freed
+                       texts as Strings) that the wheel hands to Python, then freed
+           once        the Rust part of poinav.open(FILE).psets() (_native.bench_psets with
+                       once=True): Model::open and each distinct property set read once (the
+                       wheel's psets::AllSets), then freed; poinav / once - 1 is what making
+                       the Python objects costs
            ifcos       ifcopenshell.open(FILE) + ifcopenshell.util.element.get_psets for every
                        IfcProduct (psets_only)
   meshes   poinav      poinav.open(FILE).meshes(): every element's (n, 3) float64 vertices and
@@ -31,7 +35,8 @@ IfcOpenShell, apart (its large heap, given back, made whoever ran next pay for f
 Printed per file: the median wall time of each, "wheel" = median poinav / median rust - 1 (the
 issue asks for at most 10 %), the same from the best (least disturbed) times, and from the
 CPU time (user + sys of all the process's threads, `time.process_time`, which other programs on
-a shared machine disturb much less than the wall time); the load average before and after.
+a shared machine disturb much less than the wall time); for psets also poinav against "once"
+(the Python objects' cost alone); the load average before and after.
 The Rust calls run on all cores (rayon) and the Python objects are made on one thread, so on an
 idle machine the wall time's overhead is up to twice the CPU time's.
 
@@ -74,6 +79,10 @@ def rust_psets(path):
     return _native.bench_psets(str(path))
 
 
+def once_psets(path):
+    return _native.bench_psets(str(path), once=True)
+
+
 def ifcos_psets(path):
     import ifcopenshell
     import ifcopenshell.util.element
@@ -114,6 +123,7 @@ def ifcos_meshes(path):
 CALLS = {
     ("psets", "poinav"): poinav_psets,
     ("psets", "rust"): rust_psets,
+    ("psets", "once"): once_psets,
     ("psets", "ifcos"): ifcos_psets,
     ("meshes", "poinav"): poinav_meshes,
     ("meshes", "rust"): rust_meshes,
@@ -126,11 +136,12 @@ def cli_inspect(cli, path):
 
 
 def bench(path, rounds, kinds, ifcos_rounds, cli):
-    # The wheel and the library in pairs, their order swapped every round (ABBA), so that each
-    # runs as often first as second (the first after a pair pays for the other kind's freed
+    # The wheel and the library in turn, their order rotated every round, so that each runs
+    # as often first as later (the first after a group pays for the other kind's freed
     # memory); IfcOpenShell apart afterwards: run between them, whoever came next paid for
     # the pages its large heap had given back.
-    pairs = [((kind, "poinav"), (kind, "rust")) for kind in kinds]
+    pairs = [((kind, "poinav"), (kind, "rust")) + (((kind, "once"),) if kind == "psets" else ())
+             for kind in kinds]
     tasks = {k: (lambda fn: lambda: fn(path))(CALLS[k]) for pair in pairs for k in pair}
     if cli:
         pairs.append((("inspect", "poinav"), ("inspect", "cli")))
@@ -148,8 +159,9 @@ def bench(path, rounds, kinds, ifcos_rounds, cli):
         counts[k] = n
 
     for r in range(rounds + 1):
-        for a, b in pairs:
-            for k in ((a, b) if r % 2 else (b, a)):
+        for group in pairs:
+            s = r % len(group)
+            for k in group[s:] + group[:s]:
                 run(k, r > 0)
     if ifcos_rounds:
         for kind in kinds:
@@ -224,16 +236,26 @@ def main():
                 i = (kind, "ifcos")
                 line += f" {med[i]:8.4f} {med[i] / med[p]:8.1f}x"
             print(line)
+            o = (kind, "once")
+            if o in med:
+                print(f"  {'':7} {'once s':>9} {med[o]:8.4f} {pct(med[p], med[o]):+6.1f}% "
+                      f"{pct(best[p], best[o]):+6.1f}% {'CPU once':>11} {cpu[o]:9.4f} "
+                      f"{pct(cpu[p], cpu[o]):+6.1f}%   (poinav against its own Rust part)")
         if args.instructions:
             for kind in kinds:
                 ip = instructions(kind, "poinav", path)
                 ir = instructions(kind, "rust", path)
-                print(f"  {kind:7} instructions per call: poinav {ip / 1e6:.1f} M, rust {ir / 1e6:.1f} M, "
-                      f"wheel {pct(ip, ir):+.1f}%")
+                line = (f"  {kind:7} instructions per call: poinav {ip / 1e6:.1f} M, rust {ir / 1e6:.1f} M, "
+                        f"wheel {pct(ip, ir):+.1f}%")
+                if (kind, "once") in CALLS:
+                    io = instructions(kind, "once", path)
+                    line += f"; once {io / 1e6:.1f} M, poinav {pct(ip, io):+.1f}% over it"
+                print(line)
         if ("inspect", "cli") in med:
             print(f"  inspect  poinav {med[('inspect', 'poinav')]:.4f} s, "
                   f"CLI subprocess {med[('inspect', 'cli')]:.4f} s")
-        line = f"  counts: psets poinav {counts[('psets', 'poinav')]}, rust {counts[('psets', 'rust')]}"
+        line = (f"  counts: psets poinav {counts[('psets', 'poinav')]}, rust {counts[('psets', 'rust')]}, "
+                f"once {counts[('psets', 'once')]}")
         if ("psets", "ifcos") in counts:
             line += f", ifcos {counts[('psets', 'ifcos')]}"
         if "meshes" in kinds:

@@ -84,19 +84,18 @@ impl PropertySet {
     }
 }
 
-fn scalar(v: &Value<'_>) -> Option<TypedScalar> {
+/// Reads a scalar; its IFC type name is kept (`ty`, one allocation) only when `types`.
+fn scalar(v: &Value<'_>, types: bool) -> Option<TypedScalar> {
     let (ty, inner) = match v {
-        Value::Typed(t, inner) => (Some(t.to_string()), inner.as_ref()),
+        Value::Typed(t, inner) => (Some(*t), inner.as_ref()),
         other => (None, other),
     };
     let value = match inner {
         Value::String(_) => Scalar::Text(inner.as_str()?.into_owned()),
         Value::Real(r) => Scalar::Real(*r),
-        Value::Integer(i) if ty.as_deref().is_some_and(|t| !is_integer_type(t)) => {
-            Scalar::Real(*i as f64)
-        }
+        Value::Integer(i) if ty.is_some_and(|t| !is_integer_type(t)) => Scalar::Real(*i as f64),
         Value::Integer(i) => Scalar::Integer(*i),
-        Value::Enum(e) => match (ty.as_deref(), *e) {
+        Value::Enum(e) => match (ty, *e) {
             (Some("IFCBOOLEAN"), "T") => Scalar::Bool(true),
             (Some("IFCBOOLEAN"), "F") => Scalar::Bool(false),
             (Some("IFCLOGICAL"), "T") => Scalar::Logical(Some(true)),
@@ -107,7 +106,10 @@ fn scalar(v: &Value<'_>) -> Option<TypedScalar> {
         Value::Ref(id) => Scalar::Ref(*id),
         _ => return None,
     };
-    Some(TypedScalar { ty, value })
+    Some(TypedScalar {
+        ty: ty.filter(|_| types).map(str::to_string),
+        value,
+    })
 }
 
 fn is_integer_type(upper: &str) -> bool {
@@ -122,30 +124,36 @@ fn is_integer_type(upper: &str) -> bool {
     )
 }
 
-fn scalars(v: Option<Value<'_>>) -> Vec<TypedScalar> {
-    v.and_then(|v| v.as_list().map(|l| l.iter().filter_map(scalar).collect()))
-        .unwrap_or_default()
+fn scalars(v: Option<Value<'_>>, types: bool) -> Vec<TypedScalar> {
+    v.and_then(|v| {
+        v.as_list()
+            .map(|l| l.iter().filter_map(|v| scalar(v, types)).collect())
+    })
+    .unwrap_or_default()
 }
 
 /// Reads one property instance.
 pub fn property(p: Entity<'_>, depth: usize) -> Property {
+    read_property(p, depth, true)
+}
+
+/// Reads one property instance, with its scalars' IFC type names when `types`.
+fn read_property(p: Entity<'_>, depth: usize, types: bool) -> Property {
     let name = p.name().unwrap_or_default();
+    let one = |v: Option<Value<'_>>| v.as_ref().and_then(|v| scalar(v, types));
     let value = if p.is_a("IfcPropertySingleValue") {
-        PropertyValue::Single(p.get("NominalValue").as_ref().and_then(scalar))
+        PropertyValue::Single(one(p.get("NominalValue")))
     } else if p.is_a("IfcPropertyEnumeratedValue") {
-        PropertyValue::Enumerated(scalars(p.get("EnumerationValues")))
+        PropertyValue::Enumerated(scalars(p.get("EnumerationValues"), types))
     } else if p.is_a("IfcPropertyListValue") {
-        PropertyValue::List(scalars(p.get("ListValues")))
+        PropertyValue::List(scalars(p.get("ListValues"), types))
     } else if p.is_a("IfcPropertyBoundedValue") {
-        PropertyValue::Bounded(
-            p.get("LowerBoundValue").as_ref().and_then(scalar),
-            p.get("UpperBoundValue").as_ref().and_then(scalar),
-        )
+        PropertyValue::Bounded(one(p.get("LowerBoundValue")), one(p.get("UpperBoundValue")))
     } else if p.is_a("IfcComplexProperty") && depth < 8 {
         PropertyValue::Complex(
             p.get_refs("HasProperties")
                 .into_iter()
-                .map(|c| property(c, depth + 1))
+                .map(|c| read_property(c, depth + 1, types))
                 .collect(),
         )
     } else {
@@ -192,40 +200,61 @@ pub fn type_object<'m>(e: Entity<'m>) -> Option<Entity<'m>> {
     rels.filter_map(|r| r.get_ref("RelatingType")).next()
 }
 
-/// All IfcPropertySets of `e`, type sets merged under the occurrence's by set and property name.
-pub fn property_sets(e: Entity<'_>) -> Vec<PropertySet> {
-    let mut sets: Vec<PropertySet> = Vec::new();
+/// The IfcPropertySets that [`property_sets`] merges for `e`, in its order: its type's
+/// (`true`), then its own (`false`).
+pub fn set_definitions<'m>(e: Entity<'m>) -> impl Iterator<Item = (Entity<'m>, bool)> {
     let from_type = type_definitions(e).into_iter().map(|d| (d, true));
     let own = own_definitions(e).into_iter().map(|d| (d, false));
-    for (def, is_type) in from_type.chain(own) {
-        if !def.is_a("IfcPropertySet") {
-            continue;
-        }
-        let name = def.name().unwrap_or_default();
-        let props: Vec<Property> = def
+    from_type
+        .chain(own)
+        .filter(|(d, _)| d.is_a("IfcPropertySet"))
+}
+
+/// One IfcPropertySet as written, not merged with any other.
+pub fn read_set(def: Entity<'_>, from_type: bool) -> PropertySet {
+    read_set_with(def, from_type, true)
+}
+
+/// [`read_set`] without the IFC type names (every `ty` is `None`; one allocation less per
+/// value), for readers that give values as IfcOpenShell's `get_psets` does: a text or a
+/// number without the type it was written with.
+pub fn read_set_untyped(def: Entity<'_>, from_type: bool) -> PropertySet {
+    read_set_with(def, from_type, false)
+}
+
+fn read_set_with(def: Entity<'_>, from_type: bool, types: bool) -> PropertySet {
+    PropertySet {
+        id: def.id(),
+        name: def.name().unwrap_or_default(),
+        from_type,
+        properties: def
             .get_refs("HasProperties")
             .into_iter()
-            .map(|p| property(p, 0))
-            .collect();
-        match sets.iter_mut().find(|s| s.name == name) {
+            .map(|p| read_property(p, 0, types))
+            .collect(),
+    }
+}
+
+/// All IfcPropertySets of `e`, type sets merged under the occurrence's by set and property name.
+/// Where no two of [`set_definitions`] share a name, these are their [`read_set`]s as they are.
+pub fn property_sets(e: Entity<'_>) -> Vec<PropertySet> {
+    let mut sets: Vec<PropertySet> = Vec::new();
+    for (def, is_type) in set_definitions(e) {
+        let read = read_set(def, is_type);
+        match sets.iter_mut().find(|s| s.name == read.name) {
             Some(set) => {
                 if !is_type {
-                    set.id = def.id();
+                    set.id = read.id;
                     set.from_type = false;
                 }
-                for p in props {
+                for p in read.properties {
                     match set.properties.iter_mut().find(|q| q.name == p.name) {
                         Some(q) => *q = p,
                         None => set.properties.push(p),
                     }
                 }
             }
-            None => sets.push(PropertySet {
-                id: def.id(),
-                name,
-                from_type: is_type,
-                properties: props,
-            }),
+            None => sets.push(read),
         }
     }
     sets

@@ -72,7 +72,8 @@ impl<'py> MeshKeys<'py> {
     }
 }
 
-/// The property sets of every instance of `class` (subtypes included) with a GlobalId.
+/// The property sets of every instance of `class` (subtypes included) with a GlobalId, as the
+/// library gives them: `property_sets` of each (the benchmark's library side).
 fn all_sets(model: &poinav_ifc::Model, class: &str) -> Vec<(String, Vec<PropertySet>)> {
     let products = model.instances_of(class);
     products
@@ -83,17 +84,24 @@ fn all_sets(model: &poinav_ifc::Model, class: &str) -> Vec<(String, Vec<Property
 
 /// Benchmark helper: reads `path` and every product's property sets in Rust only (no
 /// Python objects); returns the number of property sets. What the wheel adds is the
-/// difference to `open(path).psets()`.
+/// difference to `open(path).psets()`. By default as the library gives them to a Rust caller
+/// (`property_sets` of each product); `once=True`: as the wheel reads them before making
+/// Python objects (each distinct set once, `psets::AllSets`).
 #[pyfunction]
-pub fn bench_psets(py: Python<'_>, path: PathBuf) -> PyResult<usize> {
+#[pyo3(signature = (path, once = false))]
+pub fn bench_psets(py: Python<'_>, path: PathBuf, once: bool) -> PyResult<usize> {
     let model = py
         .detach(|| poinav_ifc::Model::open(&path))
         .map_err(|e| ifc_error(py, &e))?;
     Ok(py.detach(|| {
-        all_sets(&model, "IfcProduct")
-            .iter()
-            .map(|(_, s)| s.len())
-            .sum()
+        if once {
+            crate::psets::AllSets::read(&model, "IfcProduct").set_count()
+        } else {
+            all_sets(&model, "IfcProduct")
+                .iter()
+                .map(|(_, s)| s.len())
+                .sum()
+        }
     }))
 }
 
@@ -176,7 +184,7 @@ impl Model {
     /// property name -> value (each set also has `id`, the set's `#id`).
     #[pyo3(signature = (cls = "IfcProduct"))]
     fn psets<'py>(&self, py: Python<'py>, cls: &str) -> PyResult<Bound<'py, PyDict>> {
-        let all = py.detach(|| all_sets(&self.inner, cls));
+        let all = py.detach(|| crate::psets::AllSets::read(&self.inner, cls));
         let out = crate::psets::psets(py, &all)?;
         // Freeing the library's values needs no GIL.
         py.detach(move || drop(all));
