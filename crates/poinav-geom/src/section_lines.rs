@@ -106,7 +106,7 @@ fn thin_extent(points: impl Iterator<Item = DVec2> + Clone) -> Option<(DVec2, DV
         }
     }
     let (a, b, d) = best?;
-    if !(d > 0.0) {
+    if d.is_nan() || d <= 0.0 {
         return None;
     }
     let dir = (b - a) / d.sqrt();
