@@ -46,9 +46,8 @@ use i_overlay::core::overlay_rule::OverlayRule;
 use serde::{Deserialize, Serialize};
 
 use crate::mesh::Mesh;
-use crate::polygon;
 use crate::region::{self, overlay_rings, Region};
-use crate::section_lines::{hull_or_line, Lines};
+use crate::section_lines::{hull_or_line, Cover, Lines};
 use crate::winding_chain::WindingChain;
 
 /// Half the thickness below which parts of a section are dropped as slivers, metres.
@@ -223,8 +222,8 @@ fn section(
                 clip(above, z_max, false, &mut b);
                 &b
             };
-            add_normalised(&mut band, inside);
-            lines.add_if_thin(inside);
+            let area = add_normalised(&mut band, inside);
+            lines.add_if_thin(inside, area);
         }
     }
     let edges = slice.len() + band.len();
@@ -252,12 +251,13 @@ fn section(
     // under a face it has in the slab: only what the areas do not hold (a sheet on its own, a
     // surface beside the solids of one element) is a line.
     if !lines.is_empty() {
+        let cover = Cover::new(&regions);
         let mut k = 0usize;
         let mut late = false;
         lines.retain(|a, b| {
             k += 1;
             late = late || (k % CLOCK_EVERY == 0 && past(deadline));
-            !late && !covered(&regions, a, b)
+            !late && !cover.holds_segment(a, b)
         });
         if late {
             return Err(give_up(time()));
@@ -278,41 +278,22 @@ fn section(
     Ok(region::open(&region::union(&all), SLIVER_M))
 }
 
-/// How far from a section a point may be and still be on it, metres (its points are merged
-/// on 0.1 µm).
-const ON_SECTION_M: f64 = 1e-5;
-
-/// True when the segment `a`-`b` lies on `regions` (its ends and its middle inside them or
-/// within [`ON_SECTION_M`] of their boundary).
-fn covered(regions: &[Region], a: DVec2, b: DVec2) -> bool {
-    let on = |p: DVec2| {
-        regions.iter().any(|r| {
-            let (lo, hi) = r.bounds();
-            let e = DVec2::splat(ON_SECTION_M);
-            p.cmpge(lo - e).all()
-                && p.cmple(hi + e).all()
-                && (r.contains(p)
-                    || r.rings()
-                        .any(|ring| polygon::distance_to_boundary(ring, p) <= ON_SECTION_M))
-        })
-    };
-    on(a) && on(b) && on((a + b) / 2.0)
-}
-
-/// Adds the projection of `poly` counter-clockwise, unless it has (almost) no area.
-fn add_normalised(chain: &mut WindingChain, poly: &[DVec3]) {
+/// Adds the projection of `poly` counter-clockwise, unless it has (almost) no area; returns
+/// that area (0 for fewer than three points).
+fn add_normalised(chain: &mut WindingChain, poly: &[DVec3]) -> f64 {
     if poly.len() < 3 {
-        return;
+        return 0.0;
     }
     let a = projected_area(poly);
     if a.abs() < MIN_TRIANGLE_AREA || !a.is_finite() {
-        return;
+        return a;
     }
     if a > 0.0 {
         chain.add(poly.iter().map(|p| p.truncate()));
     } else {
         chain.add(poly.iter().rev().map(|p| p.truncate()));
     }
+    a
 }
 
 /// The signed area of `poly` projected on XY (counter-clockwise positive).
@@ -406,6 +387,7 @@ fn crossing(a: DVec3, b: DVec3, z: f64) -> DVec3 {
 #[cfg(test)]
 pub(crate) mod tests {
     use super::*;
+    use crate::polygon;
     use crate::region::total_area;
 
     /// A closed box, faces outwards.
@@ -667,6 +649,16 @@ pub(crate) mod tests {
             "{}",
             total_area(&s)
         );
+        // The same with the sheet starting and ending at the posts' corners.
+        let mut cornered = cuboid(DVec3::new(-0.1, 0.0, 0.0), DVec3::new(0.0, 0.1, 1.2));
+        cornered.append(&cuboid(
+            DVec3::new(3.0, 0.0, 0.0),
+            DVec3::new(3.1, 0.1, 1.2),
+        ));
+        cornered.append(&fence);
+        let s = mesh_section(&cornered, 0.05, 1.0);
+        let want = 0.02 + (3.0 + W) * W - 2.0 * (W / 2.0) * (W / 2.0);
+        assert!((total_area(&s) - want).abs() < 1e-6, "{}", total_area(&s));
         // A sheet on a wall's face, and an open desk (no bottom) whose sides stand under its
         // top: the areas hold them, the sections are the solids' alone, value for value.
         let wall = cuboid(DVec3::ZERO, DVec3::new(5.0, 0.2, 3.0));
