@@ -187,10 +187,13 @@ pub(crate) fn max_ref(args: &[u8]) -> u64 {
 pub(crate) struct Structure {
     /// Where each instance's attribute values lie.
     pub(crate) args: ArgIndex,
+    /// The largest `#id` any instance defines or mentions (dangling or not; 0 for none).
+    pub(crate) max_id_used: u64,
 }
 
-/// One chunk's results: problems, separators and each instance's separator count.
-type ChunkResult = (Vec<Problem>, Vec<u32>, Vec<u32>);
+/// One chunk's results: problems, separators, each instance's separator count and the
+/// largest `#id` the chunk defines or mentions.
+type ChunkResult = (Vec<Problem>, Vec<u32>, Vec<u32>, u64);
 
 /// Dangling references, wrong attribute counts and unbalanced argument lists, checked in
 /// parallel; the same walk records what [`Structure`] holds.
@@ -204,11 +207,13 @@ pub(crate) fn structure(model: &Model) -> (Vec<Problem>, Structure) {
             let mut out = Vec::new();
             let mut seps = Vec::with_capacity(chunk.len() * 8);
             let mut counts = Vec::with_capacity(chunk.len());
+            let mut max_id = 0u64;
             for inst in chunk {
                 let args = &bytes[inst.args()..inst.end() - 1];
                 let before = seps.len();
                 let s = shape(args, |id| model.entity(EntityId(id)).is_some(), &mut seps);
                 counts.push((seps.len() - before) as u32);
+                max_id = max_id.max(inst.id.0).max(s.max_ref);
                 if let Some(at) = s.unclosed {
                     out.push((
                         DiagnosticKind::Syntax,
@@ -307,15 +312,16 @@ pub(crate) fn structure(model: &Model) -> (Vec<Problem>, Structure) {
                     ));
                 }
             }
-            (out, seps, counts)
+            (out, seps, counts, max_id)
         })
         .collect();
     let mut problems = Vec::new();
     let total = parts.iter().map(|p| p.1.len()).sum();
-    for (p, _, _) in &parts {
+    for (p, _, _, _) in &parts {
         problems.extend_from_slice(p);
     }
-    let per_instance = parts.iter().flat_map(|(_, seps, counts)| {
+    let max_id_used = parts.iter().map(|p| p.3).max().unwrap_or(0);
+    let per_instance = parts.iter().flat_map(|(_, seps, counts, _)| {
         let mut at = 0usize;
         counts.iter().map(move |&n| {
             let s = &seps[at..at + n as usize];
@@ -324,7 +330,7 @@ pub(crate) fn structure(model: &Model) -> (Vec<Problem>, Structure) {
         })
     });
     let args = ArgIndex::from_parts(per_instance, model.instances.len(), total).unwrap_or_default();
-    (problems, Structure { args })
+    (problems, Structure { args, max_id_used })
 }
 
 /// One diagnostic per instance whose bytes are not valid UTF-8.

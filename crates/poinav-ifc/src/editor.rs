@@ -142,13 +142,19 @@ impl<'m> Editor<'m> {
                     });
                 }
                 let (model, removed) = (self.model, &self.removed);
-                let max = (0..model.len())
-                    .into_par_iter()
-                    .with_min_len(4096)
-                    .filter(|p| !removed.contains(&(*p as u32)))
-                    .map(|p| model.max_id_used_at(p))
-                    .max();
-                max.unwrap_or(0) + 1
+                if removed.is_empty() {
+                    // Found once when the model was read (enrich's usual case: a scan of every
+                    // argument list here cost 7 % of its time).
+                    model.max_id_used() + 1
+                } else {
+                    let max = (0..model.len())
+                        .into_par_iter()
+                        .with_min_len(4096)
+                        .filter(|p| !removed.contains(&(*p as u32)))
+                        .map(|p| model.max_id_used_at(p))
+                        .max();
+                    max.unwrap_or(0) + 1
+                }
             }
         };
         let id = EntityId(next);

@@ -59,6 +59,8 @@ pub struct Model {
     data_end: usize,
     /// Where each instance's attribute values lie.
     args: ArgIndex,
+    /// The largest `#id` any instance defines or mentions (found by the structure check).
+    max_id_used: u64,
     lines: OnceLock<LineTable>,
     by_type: OnceLock<Vec<Vec<u32>>>,
     inverses: Mutex<FxHashMap<(TypeId, usize), Arc<InverseIndex>>>,
@@ -138,6 +140,7 @@ impl Model {
             diagnostics: Vec::new(),
             data_end: scanned.data_end,
             args: ArgIndex::default(),
+            max_id_used: 0,
             lines: OnceLock::new(),
             by_type: OnceLock::new(),
             inverses: Mutex::new(FxHashMap::default()),
@@ -145,6 +148,7 @@ impl Model {
         let (problems, structure) = check::structure(&model);
         diagnostics.extend(problems);
         model.args = structure.args;
+        model.max_id_used = structure.max_id_used;
         diagnostics.extend(check::non_utf8(&model));
         diagnostics.extend(check::cycles(&model));
         model.diagnostics = model.finish_diagnostics(diagnostics);
@@ -230,6 +234,12 @@ impl Model {
     /// The largest `#id` in the file (0 for an empty model).
     pub fn max_id(&self) -> EntityId {
         EntityId(self.instances.iter().map(|i| i.id.0).max().unwrap_or(0))
+    }
+
+    /// The largest `#id` any instance defines or mentions, dangling or not (0 for an empty
+    /// model): an editor's first new id is above it.
+    pub(crate) fn max_id_used(&self) -> u64 {
+        self.max_id_used
     }
 
     /// The largest `#id` the instance at `position` defines or mentions (read from its
