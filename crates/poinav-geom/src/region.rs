@@ -227,16 +227,10 @@ pub fn strokes(segments: &[[DVec2; 2]], width: f64) -> Vec<Region> {
         .collect()
 }
 
-/// Outlines of more points than this (outer ring and holes) are not searched for thin parts
-/// by [`widen_thin`] unless convex (a bound on its work: see there).
-pub const WIDEN_MAX_POINTS: usize = 128;
-
 /// `regions` with every part thinner than `width` grown by `width / 2` on each side (a 5 mm
 /// glass panel becomes 5.5 cm wide for 5 cm), so that a grid of `width` cells has a cell
 /// centre in it wherever a row or column of cells crosses it. When no part is thinner (walls,
-/// furniture), `regions` come back unchanged, value for value. Only outlines with two edges
-/// that do not meet within `width` of each other (or a spike) are searched, and a non-convex
-/// outline of more than [`WIDEN_MAX_POINTS`] points is not (left as it is).
+/// furniture), `regions` come back unchanged, value for value.
 pub fn widen_thin(regions: &[Region], width: f64) -> Vec<Region> {
     if regions.is_empty() || width.is_nan() || width <= 0.0 {
         return regions.to_vec();
@@ -248,17 +242,6 @@ pub fn widen_thin(regions: &[Region], width: f64) -> Vec<Region> {
             if convex_width(&r.outer) < width {
                 thin.push(r.clone());
             }
-            continue;
-        }
-        if r.outer.len() + r.holes.iter().map(Vec::len).sum::<usize>() > WIDEN_MAX_POINTS
-            || !may_be_thin(r, width)
-        {
-            // No two edges that do not meet come within `width`: no strip thinner than it
-            // (what an opening would find besides the tips of corners, each shorter than
-            // `width`). This spares the opening, which cost 95 % of `export nav2` on office-a
-            // when every wall went through it. An outline of more points is left as it is:
-            // i_overlay's opening of some furniture outlines of about 200 points took a second
-            // each (17 s of office-a's 17.7 s).
             continue;
         }
         let one = std::slice::from_ref(r);
@@ -273,71 +256,6 @@ pub fn widen_thin(regions: &[Region], width: f64) -> Vec<Region> {
     let mut all = regions.to_vec();
     all.extend(grown.into_iter().filter_map(region_of));
     union(&all)
-}
-
-/// True when two edges of `r` (outer ring and holes) that share no end point come within
-/// `width` of each other (the sides of a strip thinner than `width`), or two that do make a
-/// spike: the far end of the shorter, itself at least `width` long, lies within `width` of the
-/// other. Edges are swept by their lowest x, so only pairs whose boxes (grown by `width`)
-/// overlap are measured.
-fn may_be_thin(r: &Region, width: f64) -> bool {
-    let mut edges: Vec<(DVec2, DVec2)> = Vec::new();
-    for ring in std::iter::once(&r.outer).chain(&r.holes) {
-        let n = ring.len();
-        edges.extend((0..n).map(|i| (ring[i], ring[(i + 1) % n])));
-    }
-    edges.sort_by(|a, b| a.0.x.min(a.1.x).total_cmp(&b.0.x.min(b.1.x)));
-    let meet =
-        |(a, b): (DVec2, DVec2), (c, d): (DVec2, DVec2)| a == c || a == d || b == c || b == d;
-    for (i, &e) in edges.iter().enumerate() {
-        let (lo, hi) = (
-            e.0.min(e.1) - DVec2::splat(width),
-            e.0.max(e.1) + DVec2::splat(width),
-        );
-        for &f in &edges[i + 1..] {
-            if f.0.x.min(f.1.x) > hi.x {
-                break;
-            }
-            let (flo, fhi) = (f.0.min(f.1), f.0.max(f.1));
-            if fhi.y < lo.y || flo.y > hi.y {
-                continue;
-            }
-            if meet(e, f) {
-                if spike(e, f, width) {
-                    return true;
-                }
-                continue;
-            }
-            let d = polygon::segment_distance(e.0, e.1, f.0)
-                .min(polygon::segment_distance(e.0, e.1, f.1))
-                .min(polygon::segment_distance(f.0, f.1, e.0))
-                .min(polygon::segment_distance(f.0, f.1, e.1));
-            if d < width {
-                return true;
-            }
-        }
-    }
-    false
-}
-
-/// Two edges sharing an end point: the shorter's far end within `width` of the longer, the
-/// shorter at least `width` long (a spike thinner than `width` over a length of `width` or
-/// more; a shorter edge makes at most a corner tip).
-fn spike(e: (DVec2, DVec2), f: (DVec2, DVec2), width: f64) -> bool {
-    let (short, long) = if e.0.distance(e.1) <= f.0.distance(f.1) {
-        (e, f)
-    } else {
-        (f, e)
-    };
-    if short.0.distance(short.1) < width {
-        return false;
-    }
-    let far = if short.0 == long.0 || short.0 == long.1 {
-        short.1
-    } else {
-        short.0
-    };
-    polygon::segment_distance(long.0, long.1, far) < width
 }
 
 /// True when `ring` turns one way only (collinear points allowed).
@@ -456,41 +374,6 @@ mod tests {
         assert!(polygon::signed_area(&ring[0].outer) > 0.0);
         assert!(polygon::signed_area(&ring[0].holes[0]) < 0.0);
         assert!((ring[0].centroid() - DVec2::new(2.0, 2.0)).length() < 1e-6);
-    }
-
-    #[test]
-    fn only_regions_with_close_edges_may_be_thin() {
-        // A 20 cm wall with a door gap, an L of 20 cm arms: thick everywhere.
-        let wall = difference(&[rect(0.0, 0.0, 5.0, 0.2)], &[rect(2.0, 0.0, 3.0, 0.2)]);
-        let ell = Region::from_ring(vec![
-            DVec2::new(0.0, 0.0),
-            DVec2::new(2.0, 0.0),
-            DVec2::new(2.0, 0.2),
-            DVec2::new(0.2, 0.2),
-            DVec2::new(0.2, 2.0),
-            DVec2::new(0.0, 2.0),
-        ])
-        .unwrap();
-        assert!(!wall.iter().any(|r| may_be_thin(r, 0.05)));
-        assert!(!may_be_thin(&ell, 0.05));
-        // The same L with a 4 cm arm.
-        let mut thin = ell.clone();
-        thin.outer[3] = DVec2::new(0.04, 0.2);
-        thin.outer[4] = DVec2::new(0.04, 2.0);
-        assert!(may_be_thin(&Region::from_ring(thin.outer).unwrap(), 0.05));
-        // Triangles, every edge meeting the others: a 1 degree spike 1 m long is thin, an
-        // equilateral one of 1 m is not.
-        let triangle = |deg: f64| {
-            let t = deg.to_radians();
-            Region::from_ring(vec![
-                DVec2::ZERO,
-                DVec2::new(1.0, 0.0),
-                DVec2::new(t.cos(), t.sin()),
-            ])
-            .unwrap()
-        };
-        assert!(may_be_thin(&triangle(1.0), 0.05));
-        assert!(!may_be_thin(&triangle(60.0), 0.05));
     }
 
     #[test]
