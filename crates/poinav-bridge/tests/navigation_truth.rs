@@ -264,7 +264,7 @@ fn check_properties(name: &str, file: &Path, b: &Building, nav: &Navigator<'_>) 
                     NodeKind::Zone => reachable[v],
                     NodeKind::Door => {
                         let sides = t
-                            .door(t.nodes[v].floor, t.nodes[v].door().unwrap().get())
+                            .door(t.nodes[v].floor, t.nodes[v].door().unwrap())
                             .unwrap();
                         sides.exterior()
                             || t.adjacency[v].iter().any(|&(_, w)| w != n && reachable[w])

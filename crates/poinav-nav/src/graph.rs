@@ -606,10 +606,10 @@ impl Topology {
     }
 
     /// The door entry of storey `floor`'s door `door`.
-    pub fn door(&self, floor: usize, door: usize) -> Option<&DoorSides> {
+    pub fn door(&self, floor: usize, door: DoorIdx) -> Option<&DoorSides> {
         self.doors
             .iter()
-            .find(|d| d.floor == floor && d.door.get() == door)
+            .find(|d| d.floor == floor && d.door == door)
     }
 
     /// The node of a zone named `name` (Name or LongName) on storey `floor` (any storey when
@@ -790,7 +790,7 @@ impl Topology {
                 });
                 match n.of {
                     NodeOf::Door(d) => {
-                        let sides = self.door(n.floor, d.get());
+                        let sides = self.door(n.floor, d);
                         v["exterior"] = serde_json::json!(sides.is_some_and(|s| s.exterior()));
                         v["entrance"] = serde_json::json!(sides.and_then(|s| s.entrance()));
                         v["sides_from"] =

@@ -242,7 +242,7 @@ pub fn entrance_aprons(
     floor: &Floor,
     profile: &RobotProfile,
     options: &GridOptions,
-) -> Vec<(usize, Ring)> {
+) -> Vec<(DoorIdx, Ring)> {
     let apron = options.entrance_apron_m;
     if !(apron.is_finite() && apron > 0.0) {
         return Vec::new();
@@ -280,7 +280,7 @@ pub fn entrance_aprons(
                 half_depth: apron / 2.0,
                 ..f
             };
-            out.push((k, front.rectangle(f.half_width, apron / 2.0)));
+            out.push((DoorIdx::new(k), front.rectangle(f.half_width, apron / 2.0)));
         }
     }
     out
@@ -643,7 +643,7 @@ impl OccupancyGrid {
 
         // Entrance aprons: free cells in front of open exterior doors, outside.
         for (k, ring) in entrance_aprons(floor, profile, options) {
-            if doors[k].walled_in || doors[k].gave_up {
+            if doors[k.get()].walled_in || doors[k.get()].gave_up {
                 continue;
             }
             paint(width, height, origin, res, &ring, |i| {

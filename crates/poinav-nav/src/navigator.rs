@@ -173,9 +173,7 @@ impl<'a> Navigator<'a> {
             .map(|n| {
                 let passable = match n.door() {
                     Some(d) => {
-                        let outside = topology
-                            .door(n.floor, d.get())
-                            .and_then(|d| d.outside_side());
+                        let outside = topology.door(n.floor, d).and_then(|d| d.outside_side());
                         floors[n.floor].grid.door_passable(d.get(), outside)
                     }
                     None => true,
@@ -298,11 +296,9 @@ impl<'a> Navigator<'a> {
     pub fn closed_reason(&self, n: usize) -> String {
         let (s, why) = &self.status[n];
         let node = &self.topology.nodes[n];
-        let gave_up = node.door().is_some_and(|d| {
-            self.topology
-                .door(node.floor, d.get())
-                .is_some_and(|d| d.gave_up)
-        });
+        let gave_up = node
+            .door()
+            .is_some_and(|d| self.topology.door(node.floor, d).is_some_and(|d| d.gave_up));
         if gave_up {
             format!(
                 "{} ({why}) but given up on: a size bound was passed, so it is taken as closed",

@@ -653,7 +653,7 @@ impl Navigator<'_> {
                 let g = &grid.occupancy;
                 let node = match (g.zone[cell], g.door[cell]) {
                     (Some(z), _) => Some(self.topology.zone_nodes[fi][z.get()]),
-                    (None, Some(d)) => self.topology.door(fi, d.get()).map(|d| d.node),
+                    (None, Some(d)) => self.topology.door(fi, d).map(|d| d.node),
                     (None, None) => None,
                 };
                 Ok(Spot {

@@ -28,7 +28,9 @@ fn door_checks_with(
         .iter()
         .enumerate()
         .map(|(k, d)| {
-            let outside = topo.door(0, k).and_then(|s| s.outside_side());
+            let outside = topo
+                .door(0, poinav_nav::DoorIdx::new(k))
+                .and_then(|s| s.outside_side());
             (
                 d.name.clone().unwrap(),
                 grid.occupancy.doors[k].status,
@@ -220,7 +222,7 @@ fn narrow_door_in_a_thick_wall_and_an_empty_storey() {
         levels: vec![],
     };
     let topo = Topology::build(&building);
-    let mut sides = topo.door(1, 0).unwrap().zones;
+    let mut sides = topo.door(1, poinav_nav::DoorIdx::new(0)).unwrap().zones;
     sides.sort();
     assert_eq!(
         sides,
