@@ -25,18 +25,23 @@ pub enum Target {
     Robot(u32),
 }
 
-/// Door passages a ray crossed before its hit (at most [`Passages::CAP`]).
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+/// Door passages a ray crossed before its hit (at most [`Passages::CAP`]), ascending.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct Passages {
+    n: u8,
+    doors: [u32; Passages::CAP],
+}
+
+/// The passages a walk has crossed so far, with the distance of each (only the walk needs
+/// them: a reading keeps the doors).
+#[derive(Debug, Clone, Copy, Default)]
+struct Crossings {
     n: u8,
     doors: [u32; Passages::CAP],
     dist: [f64; Passages::CAP],
 }
 
-impl Passages {
-    /// How many crossings are kept per ray.
-    pub const CAP: usize = 4;
-
+impl Crossings {
     fn add(&mut self, door: u32, t: f64) {
         for k in 0..self.n as usize {
             if self.doors[k] == door {
@@ -44,14 +49,15 @@ impl Passages {
                 return;
             }
         }
-        if (self.n as usize) < Self::CAP {
+        if (self.n as usize) < Passages::CAP {
             self.doors[self.n as usize] = door;
             self.dist[self.n as usize] = t;
             self.n += 1;
         }
     }
 
-    fn retain_before(&mut self, limit: f64) {
+    /// The doors crossed no farther than `limit`, sorted by door index for determinism.
+    fn before(mut self, limit: f64) -> Passages {
         let mut k = 0;
         while k < self.n as usize {
             if self.dist[k] > limit {
@@ -63,20 +69,20 @@ impl Passages {
                 k += 1;
             }
         }
-        // Sorted by door index for determinism.
         let n = self.n as usize;
-        for i in 1..n {
-            let mut j = i;
-            while j > 0 && self.doors[j - 1] > self.doors[j] {
-                self.doors.swap(j - 1, j);
-                self.dist.swap(j - 1, j);
-                j -= 1;
-            }
-        }
+        let mut doors = self.doors;
+        doors[..n].sort_unstable();
+        doors[n..].fill(0);
+        Passages { n: self.n, doors }
     }
+}
 
-    /// The crossings of `doors` (ascending, at most [`Passages::CAP`]; distances 0), as a
-    /// compact trace stores them.
+impl Passages {
+    /// How many crossings are kept per ray.
+    pub const CAP: usize = 4;
+
+    /// The crossings of `doors` (ascending, at most [`Passages::CAP`]), as a compact trace
+    /// stores them.
     pub(crate) fn of_doors(doors: &[u32]) -> Passages {
         let mut p = Passages::default();
         for (k, &d) in doors.iter().take(Self::CAP).enumerate() {
@@ -133,7 +139,6 @@ impl RayHit {
         passages: Passages {
             n: 0,
             doors: [0; Passages::CAP],
-            dist: [0.0; Passages::CAP],
         },
     };
 }
@@ -207,6 +212,11 @@ pub struct World {
     statics: Rows,
     robots: Rows,
     robot_pairs: Vec<(u32, u32)>,
+    /// Per robot: the cells its box covers, as `[x0, y0, x1, y1]` (kept up to date by
+    /// [`World::update_robot`]).
+    rects: Vec<[u32; 4]>,
+    /// Some robot's cells changed since the robots' grid was built.
+    stale: bool,
     /// Scratch space of the robots' grid rebuild.
     robot_next: Vec<u32>,
     /// One bit per cell: the cell lists a static edge.
@@ -263,6 +273,8 @@ impl World {
             statics: Rows::default(),
             robots: Rows::default(),
             robot_pairs: Vec::new(),
+            rects: Vec::new(),
+            stale: false,
             robot_next: Vec::new(),
             static_bits: Vec::new(),
             busy: Vec::new(),
@@ -317,6 +329,14 @@ impl World {
         }
     }
 
+    /// The cells box `b` covers, as `[x0, y0, x1, y1]`.
+    fn rect(&self, b: &Obb) -> [u32; 4] {
+        let (lo, hi) = b.aabb();
+        let (x0, y0) = self.cell_of(lo);
+        let (x1, y1) = self.cell_of(hi);
+        [x0 as u32, y0 as u32, x1 as u32, y1 as u32]
+    }
+
     /// Replaces the robots' boxes and rebuilds their grid.
     pub fn set_robots(&mut self, boxes: &[Obb]) {
         self.boxes.clear();
@@ -325,16 +345,26 @@ impl World {
         self.reach.extend(boxes.iter().map(reach));
         self.radius.clear();
         self.radius.extend(boxes.iter().map(Obb::radius));
+        self.rects = boxes.iter().map(|b| self.rect(b)).collect();
+        self.stale = true;
         self.refresh_robots();
     }
 
-    /// Rebuilds the robots' grid from their current boxes (those [`World::update_robot`] set).
+    /// Rebuilds the robots' grid from their current boxes (those [`World::update_robot`] set),
+    /// unless no box has left or entered a cell since it was last built.
     pub fn refresh_robots(&mut self) {
+        if !self.stale {
+            return;
+        }
+        self.stale = false;
         let mut pairs = std::mem::take(&mut self.robot_pairs);
         pairs.clear();
-        for (i, b) in self.boxes.iter().enumerate() {
-            let (lo, hi) = b.aabb();
-            self.cover(lo, hi, |c| pairs.push((c, i as u32)));
+        for (i, &[x0, y0, x1, y1]) in self.rects.iter().enumerate() {
+            for y in y0..=y1 {
+                for x in x0..=x1 {
+                    pairs.push((y * self.nx as u32 + x, i as u32));
+                }
+            }
         }
         self.robots
             .rebuild(self.nx * self.ny, &pairs, &mut self.robot_next);
@@ -352,6 +382,11 @@ impl World {
         let old = &self.boxes[i];
         if (old.hl, old.hw) != (b.hl, b.hw) {
             self.radius[i] = b.radius();
+        }
+        let rect = self.rect(&b);
+        if rect != self.rects[i] {
+            self.rects[i] = rect;
+            self.stale = true;
         }
         self.boxes[i] = b;
     }
@@ -472,7 +507,7 @@ impl World {
     ) -> RayHit {
         let mut best = range;
         let mut target = Target::None;
-        let mut passages = Passages::default();
+        let mut passages = Crossings::default();
         let (flat_x, flat_y) = (dir.x.abs() < 1e-300, dir.y.abs() < 1e-300);
         let cell = self.cell;
         let (up_x, up_y) = (dir.x > 0.0, dir.y > 0.0);
@@ -509,9 +544,16 @@ impl World {
         };
         let mut c = cy * self.nx + cx;
         loop {
-            // Cells listing nothing are passed by a bit test.
-            if self.busy[c >> 6] & (1 << (c & 63)) != 0 {
-                for &item in self.statics.cell(c) {
+            // Cells listing nothing are passed by a bit test, cells listing only robots skip
+            // the static lists by a second one.
+            let (word, bit) = (c >> 6, 1u64 << (c & 63));
+            if self.busy[word] & bit != 0 {
+                let statics: &[u32] = if self.static_bits[word] & bit != 0 {
+                    self.statics.cell(c)
+                } else {
+                    &[]
+                };
+                for &item in statics {
                     if item & PASSAGE != 0 {
                         let s = &self.passages[(item & !PASSAGE) as usize];
                         if let Some(t) = ray_segment(o, dir, s.a, s.b) {
@@ -569,11 +611,10 @@ impl World {
                 t_max_y += dt_y;
             }
         }
-        passages.retain_before(best);
         RayHit {
             dist: best,
             target,
-            passages,
+            passages: passages.before(best),
         }
     }
 
@@ -581,7 +622,7 @@ impl World {
     pub fn cast_brute_force(&self, o: DVec2, dir: DVec2, range: f64, skip: Option<u32>) -> RayHit {
         let mut best = range;
         let mut target = Target::None;
-        let mut passages = Passages::default();
+        let mut passages = Crossings::default();
         for s in &self.segs {
             if let Some(t) = ray_segment(o, dir, s.a, s.b) {
                 if t < best {
@@ -608,11 +649,10 @@ impl World {
                 }
             }
         }
-        passages.retain_before(best);
         RayHit {
             dist: best,
             target,
-            passages,
+            passages: passages.before(best),
         }
     }
 
@@ -628,13 +668,19 @@ impl World {
         out.clear();
         ids.clear();
         self.cover(lo, hi, |c| {
-            ids.extend(
-                self.statics
-                    .cell(c as usize)
-                    .iter()
-                    .filter(|&&i| i & PASSAGE == 0),
-            )
+            // Cells without a static edge (most, in open space) by a bit test.
+            if self.static_bits[c as usize >> 6] & (1 << (c & 63)) != 0 {
+                ids.extend(
+                    self.statics
+                        .cell(c as usize)
+                        .iter()
+                        .filter(|&&i| i & PASSAGE == 0),
+                )
+            }
         });
+        if ids.is_empty() {
+            return;
+        }
         ids.sort_unstable();
         ids.dedup();
         out.extend(ids.iter().map(|&i| {
@@ -660,20 +706,26 @@ impl World {
         false
     }
 
-    /// Robots other than `skip` whose (slack-widened) cells overlap `lo`-`hi`, ascending.
+    /// Robots other than `skip` whose box's bounding box comes within the slack of `lo`-`hi`,
+    /// ascending. Found through their (slack-widened) cells: the grid is rebuilt once per step
+    /// while boxes move within it, and a robot whose box is now farther than the slack could
+    /// not reach the box by its next move in this step either.
     pub fn robots_near(&self, lo: DVec2, hi: DVec2, skip: usize, out: &mut Vec<u32>) {
         out.clear();
         let s = DVec2::splat(self.slack);
-        self.cover(lo - s, hi + s, |c| {
-            out.extend(
-                self.robots
-                    .cell(c as usize)
-                    .iter()
-                    .filter(|&&r| r as usize != skip),
-            )
+        let (qlo, qhi) = (lo - s, hi + s);
+        self.cover(qlo, qhi, |c| {
+            for &r in self.robots.cell(c as usize) {
+                if r as usize == skip || out.contains(&r) {
+                    continue;
+                }
+                let (blo, bhi) = self.boxes[r as usize].aabb();
+                if blo.x <= qhi.x && bhi.x >= qlo.x && blo.y <= qhi.y && bhi.y >= qlo.y {
+                    out.push(r);
+                }
+            }
         });
         out.sort_unstable();
-        out.dedup();
     }
 }
 
