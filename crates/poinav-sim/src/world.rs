@@ -215,6 +215,8 @@ pub struct World {
     /// Per robot: the cells its box covers, as `[x0, y0, x1, y1]` (kept up to date by
     /// [`World::update_robot`]).
     rects: Vec<[u32; 4]>,
+    /// Per robot: its box's bounding box.
+    aabbs: Vec<(DVec2, DVec2)>,
     /// Some robot's cells changed since the robots' grid was built.
     stale: bool,
     /// Scratch space of the robots' grid rebuild.
@@ -274,6 +276,7 @@ impl World {
             robots: Rows::default(),
             robot_pairs: Vec::new(),
             rects: Vec::new(),
+            aabbs: Vec::new(),
             stale: false,
             robot_next: Vec::new(),
             static_bits: Vec::new(),
@@ -329,9 +332,8 @@ impl World {
         }
     }
 
-    /// The cells box `b` covers, as `[x0, y0, x1, y1]`.
-    fn rect(&self, b: &Obb) -> [u32; 4] {
-        let (lo, hi) = b.aabb();
+    /// The cells the bounding box `lo`-`hi` covers, as `[x0, y0, x1, y1]`.
+    fn rect(&self, (lo, hi): (DVec2, DVec2)) -> [u32; 4] {
         let (x0, y0) = self.cell_of(lo);
         let (x1, y1) = self.cell_of(hi);
         [x0 as u32, y0 as u32, x1 as u32, y1 as u32]
@@ -345,7 +347,8 @@ impl World {
         self.reach.extend(boxes.iter().map(reach));
         self.radius.clear();
         self.radius.extend(boxes.iter().map(Obb::radius));
-        self.rects = boxes.iter().map(|b| self.rect(b)).collect();
+        self.aabbs = boxes.iter().map(Obb::aabb).collect();
+        self.rects = self.aabbs.iter().map(|&a| self.rect(a)).collect();
         self.stale = true;
         self.refresh_robots();
     }
@@ -383,7 +386,8 @@ impl World {
         if (old.hl, old.hw) != (b.hl, b.hw) {
             self.radius[i] = b.radius();
         }
-        let rect = self.rect(&b);
+        self.aabbs[i] = b.aabb();
+        let rect = self.rect(self.aabbs[i]);
         if rect != self.rects[i] {
             self.rects[i] = rect;
             self.stale = true;
@@ -543,43 +547,45 @@ impl World {
             (cy, self.nx.wrapping_neg())
         };
         let mut c = cy * self.nx + cx;
+        // Everything the loop reads, as local slices (fewer reloads through `self`).
+        let (busy, static_bits) = (&self.busy[..], &self.static_bits[..]);
+        let (r_start, r_items) = (&self.robots.start[..], &self.robots.items[..]);
+        let (boxes, reach) = (&self.boxes[..], &self.reach[..]);
+        let skip = skip.unwrap_or(u32::MAX);
         loop {
             // Cells listing nothing are passed by a bit test, cells listing only robots skip
             // the static lists by a second one.
             let (word, bit) = (c >> 6, 1u64 << (c & 63));
-            if self.busy[word] & bit != 0 {
-                let statics: &[u32] = if self.static_bits[word] & bit != 0 {
-                    self.statics.cell(c)
-                } else {
-                    &[]
-                };
-                for &item in statics {
-                    if item & PASSAGE != 0 {
-                        let s = &self.passages[(item & !PASSAGE) as usize];
-                        if let Some(t) = ray_segment(o, dir, s.a, s.b) {
-                            if t <= range {
-                                passages.add(s.owner, t);
+            if busy[word] & bit != 0 {
+                if static_bits[word] & bit != 0 {
+                    for &item in self.statics.cell(c) {
+                        if item & PASSAGE != 0 {
+                            let s = &self.passages[(item & !PASSAGE) as usize];
+                            if let Some(t) = ray_segment(o, dir, s.a, s.b) {
+                                if t <= range {
+                                    passages.add(s.owner, t);
+                                }
                             }
-                        }
-                    } else {
-                        let s = &self.segs[item as usize];
-                        if let Some(t) = ray_segment(o, dir, s.a, s.b) {
-                            if t < best {
-                                best = t;
-                                target = Target::Obstacle(s.owner);
+                        } else {
+                            let s = &self.segs[item as usize];
+                            if let Some(t) = ray_segment(o, dir, s.a, s.b) {
+                                if t < best {
+                                    best = t;
+                                    target = Target::Obstacle(s.owner);
+                                }
                             }
                         }
                     }
                 }
-                for &r in self.robots.cell(c) {
-                    if Some(r) == skip {
+                for &r in &r_items[r_start[c] as usize..r_start[c + 1] as usize] {
+                    if r == skip {
                         continue;
                     }
                     // The circle around the box first (`dir` is a unit vector): missed, or entered
                     // no nearer than the best hit, the box cannot give a nearer hit.
-                    let b = &self.boxes[r as usize];
+                    let b = &boxes[r as usize];
                     let rel = b.c - o;
-                    let rad = self.reach[r as usize];
+                    let rad = reach[r as usize];
                     if rel.perp_dot(dir).abs() > rad || rel.dot(dir) - rad >= best {
                         continue;
                     }
@@ -719,7 +725,7 @@ impl World {
                 if r as usize == skip || out.contains(&r) {
                     continue;
                 }
-                let (blo, bhi) = self.boxes[r as usize].aabb();
+                let (blo, bhi) = self.aabbs[r as usize];
                 if blo.x <= qhi.x && bhi.x >= qlo.x && blo.y <= qhi.y && bhi.y >= qlo.y {
                     out.push(r);
                 }
