@@ -246,6 +246,120 @@ fn resolve(edges: &[(DVec2, DVec2, Owner)], mut b: Obb, looked: &mut Region) -> 
     deepest(edges, &b, looked).is_none().then_some(b.c)
 }
 
+/// Where robot `i` (`robot`) ends a step of `dt` with `action`, against the boxes `world`
+/// holds.
+fn plan_move(
+    world: &World,
+    robot: &Robot,
+    i: usize,
+    action: Command,
+    dt: f64,
+    sc: &mut Scratch,
+) -> Move {
+    let (lim, st) = (&robot.limits, robot.state);
+    let v = lim.next_speed(st.speed, action.v, dt);
+    let omega = lim.turn(action.omega);
+    // The world holds robot i's footprint at its current pose.
+    let start = *world.robot(i);
+    gather(
+        world,
+        i,
+        start,
+        v.abs() * dt + world.robot_radius(i) * omega.abs() * dt,
+        sc,
+    );
+    let edges = &sc.edges;
+    let mut looked = Region::EMPTY;
+    let mut heading = wrap_angle(st.heading + omega * dt);
+    let mut pos = st.pos;
+    // The box's axis at `heading` (its sine and cosine computed once: every box below is
+    // the robot's footprint at `heading`, bit for bit as `footprint_at` builds it).
+    let (hl, hw) = (start.hl, start.hw);
+    let mut dir = start.ax;
+    if heading != st.heading {
+        let turned_dir = DVec2::from_angle(heading);
+        let turned = Obb {
+            c: pos,
+            ax: turned_dir,
+            hl,
+            hw,
+        };
+        match resolve(edges, turned, &mut looked) {
+            Some(p) => {
+                pos = p;
+                dir = turned_dir;
+            }
+            None => heading = st.heading,
+        }
+    } else if heading.to_bits() != st.heading.to_bits() {
+        // -0 and 0: no turn, but the sine's sign differs.
+        dir = DVec2::from_angle(heading);
+    }
+    let at = |pos: DVec2, ax: DVec2| Obb { c: pos, ax, hl, hw };
+    let mut rem = dir * (v * dt);
+    let mut touched: Vec<Owner> = Vec::new();
+    for _ in 0..4 {
+        if rem.length_squared() < 1e-24 {
+            break;
+        }
+        let moving = at(pos, dir);
+        let corners = moving.corners();
+        // Only edges near the swept box can be hit (the sweep's contacts lie in it).
+        let (lo, hi) = moving.aabb();
+        let (lo, hi) = (lo.min(lo + rem), hi.max(hi + rem));
+        looked.add(lo, hi);
+        let mut hit: Option<(f64, DVec2, Owner)> = None;
+        for &(a, b, o) in edges {
+            if apart(a, b, lo, hi) {
+                continue;
+            }
+            if let Some((s, n)) = sweep_segment(&corners, rem, a, b) {
+                if hit.is_none_or(|(hs, _, _)| s < hs) {
+                    hit = Some((s, n, o));
+                }
+            }
+        }
+        match hit {
+            None => {
+                pos += rem;
+                break;
+            }
+            Some((s, n, o)) => {
+                pos += rem * s + n * SKIN;
+                if !touched.contains(&o) {
+                    touched.push(o);
+                }
+                rem *= 1.0 - s;
+                let into = rem.dot(n);
+                if into < 0.0 {
+                    rem -= n * into;
+                }
+            }
+        }
+    }
+    if deepest(edges, &at(pos, dir), &mut looked).is_some() {
+        pos = st.pos;
+        heading = st.heading;
+        dir = start.ax;
+    }
+    let moved = pos - st.pos;
+    Move {
+        pos,
+        heading,
+        omega: wrap_angle(heading - st.heading) / dt,
+        actual_speed: moved.length() / dt,
+        speed: if touched.is_empty() {
+            v
+        } else {
+            moved.dot(dir) / dt
+        },
+        travelled: moved.length(),
+        footprint: at(pos, dir),
+        touched,
+        looked,
+    }
+}
+
 /// What a finished run leaves.
 #[derive(Debug, Clone)]
 pub struct RunData {
@@ -295,6 +409,9 @@ pub struct Sim<'f> {
     arrived: Vec<bool>,
     readings: Vec<Reading>,
     perceptions: Vec<Perception>,
+    /// Each robot's move of the step planned with its decision (against the boxes at the
+    /// start of the step), before the moves are committed.
+    guesses: Vec<Option<(Move, Near)>>,
     /// Every move planned again at its commit (the plain sequential loop; tests compare it).
     sequential_moves: bool,
     /// Per robot: the heading (its bits) its ray directions were last computed for, and
@@ -434,6 +551,7 @@ impl<'f> Sim<'f> {
             arrived: vec![false; n],
             readings: Vec::with_capacity(n),
             perceptions: Vec::with_capacity(n),
+            guesses: Vec::with_capacity(n),
             sequential_moves: false,
             ray_dirs: vec![(None, [DVec2::ZERO; 5]); n],
         };
@@ -546,7 +664,7 @@ impl<'f> Sim<'f> {
         self.sense_and_perceive(t);
         let mut actions = std::mem::take(&mut self.actions);
         let mut events = std::mem::take(&mut self.step_events);
-        self.decide_all(t, &mut actions, &mut events);
+        self.decide_all(t, &mut actions, &mut events, advance);
         for e in &mut events {
             self.events.append(e);
         }
@@ -555,7 +673,8 @@ impl<'f> Sim<'f> {
             self.records.extend_from_slice(&self.current);
         }
         if advance {
-            self.move_all(&actions, t);
+            let guesses = std::mem::take(&mut self.guesses);
+            self.commit_moves(guesses.into_iter().flatten(), &actions, t);
         }
         self.actions = actions;
         if !advance {
@@ -647,14 +766,23 @@ impl<'f> Sim<'f> {
 
     /// Every robot's controller command shaped by Algorithm 1 into `actions`, its events of
     /// this step into `events` (one list per robot) and its record into the step's records
-    /// (written in place: the records are about 500 bytes each).
-    fn decide_all(&mut self, t: f64, actions: &mut Vec<Command>, events: &mut Vec<Vec<Event>>) {
+    /// (written in place: the records are about 500 bytes each); with `plan`, also its move
+    /// against the boxes at the start of the step into `guesses` (in the same pass: one call
+    /// into the pool less per step).
+    fn decide_all(
+        &mut self,
+        t: f64,
+        actions: &mut Vec<Command>,
+        events: &mut Vec<Vec<Event>>,
+        plan: bool,
+    ) {
         let step = self.step;
         let n = self.robots.len();
         actions.resize(n, Command::default());
         events.resize_with(n, Vec::new);
         let (nav, floor, behaviour) = (&self.nav, self.floor, &self.opts.behaviour);
         let (readings, perceptions) = (&self.readings, &self.perceptions);
+        let (world, dt) = (&self.world, self.opts.dt);
         self.ctrls
             .par_iter_mut()
             .zip(self.minds.par_iter_mut())
@@ -664,8 +792,9 @@ impl<'f> Sim<'f> {
             .zip(events.par_iter_mut())
             .enumerate()
             .with_min_len(8)
-            .map(
-                |(i, (((((ctrl, mind), robot), arrived), action_out), events))| {
+            .map_init(
+                Scratch::default,
+                |sc, (i, (((((ctrl, mind), robot), arrived), action_out), events))| {
                     let p = &perceptions[i];
                     let ctx = Ctx {
                         t,
@@ -717,7 +846,11 @@ impl<'f> Sim<'f> {
                             });
                         }
                     }
-                    StepRecord {
+                    let guess = plan.then(|| {
+                        let m = plan_move(world, robot, i, action, dt, sc);
+                        (m, Near::of(&sc.robots))
+                    });
+                    let record = StepRecord {
                         step,
                         robot: i as u32,
                         pos: robot.state.pos,
@@ -730,16 +863,20 @@ impl<'f> Sim<'f> {
                         mode,
                         zone: mind.zone,
                         brush: robot.state.brush,
-                    }
+                    };
+                    (record, guess)
                 },
             )
-            .collect_into_vec(&mut self.current);
+            .unzip_into_vecs(&mut self.current, &mut self.guesses);
     }
 
-    /// Moves every robot: computed in parallel against the boxes at the start of the step,
-    /// committed in index order; a robot whose neighbours (the robots its move looked at)
-    /// already moved in this step, from or to where its move tested edges ([`Region`]), is
-    /// moved again against their new boxes, so the result is the sequential one.
+    /// Moves every robot with `actions` (what [`Sim::tick`] does with the moves planned with the
+    /// decisions; the tests move robots with chosen commands): computed in parallel against the
+    /// boxes at the start of the step, committed in index order; a robot whose neighbours (the
+    /// robots its move looked at) already moved in this step, from or to where its move tested
+    /// edges ([`Region`]), is moved again against their new boxes, so the result is the
+    /// sequential one.
+    #[cfg(test)]
     fn move_all(&mut self, actions: &[Command], t: f64) {
         let this = &*self;
         let guesses: Vec<(Move, Near)> = (0..actions.len())
@@ -750,10 +887,22 @@ impl<'f> Sim<'f> {
                 (m, Near::of(&sc.robots))
             })
             .collect();
+        self.commit_moves(guesses.into_iter(), actions, t);
+    }
+
+    /// Commits the moves `guesses` (each robot's, in index order, planned against the boxes at
+    /// the start of the step, with the robots it looked at), redoing those whose neighbours
+    /// moved where they looked.
+    fn commit_moves(
+        &mut self,
+        guesses: impl Iterator<Item = (Move, Near)>,
+        actions: &[Command],
+        t: f64,
+    ) {
         // Per robot already moved in this step: its box before the move.
         let mut moved: Vec<Option<Obb>> = vec![None; actions.len()];
         let mut sc = Scratch::default();
-        for (i, (guess, near)) in guesses.into_iter().enumerate() {
+        for (i, (guess, near)) in guesses.enumerate() {
             // Redone only when a neighbour that moved was, or now is, where the move looked.
             let redo = self.sequential_moves
                 || near.as_slice().iter().any(|&j| {
@@ -778,109 +927,7 @@ impl<'f> Sim<'f> {
 
     /// Where robot `i` ends this step with `action`, against the robots' current boxes.
     fn plan_move(&self, i: usize, action: Command, sc: &mut Scratch) -> Move {
-        let dt = self.opts.dt;
-        let (lim, st) = (&self.robots[i].limits, self.robots[i].state);
-        let v = lim.next_speed(st.speed, action.v, dt);
-        let omega = lim.turn(action.omega);
-        // The world holds robot i's footprint at its current pose.
-        let start = *self.world.robot(i);
-        gather(
-            &self.world,
-            i,
-            start,
-            v.abs() * dt + self.world.robot_radius(i) * omega.abs() * dt,
-            sc,
-        );
-        let edges = &sc.edges;
-        let mut looked = Region::EMPTY;
-        let mut heading = wrap_angle(st.heading + omega * dt);
-        let mut pos = st.pos;
-        // The box's axis at `heading` (its sine and cosine computed once: every box below is
-        // the robot's footprint at `heading`, bit for bit as `footprint_at` builds it).
-        let (hl, hw) = (start.hl, start.hw);
-        let mut dir = start.ax;
-        if heading != st.heading {
-            let turned_dir = DVec2::from_angle(heading);
-            let turned = Obb {
-                c: pos,
-                ax: turned_dir,
-                hl,
-                hw,
-            };
-            match resolve(edges, turned, &mut looked) {
-                Some(p) => {
-                    pos = p;
-                    dir = turned_dir;
-                }
-                None => heading = st.heading,
-            }
-        } else if heading.to_bits() != st.heading.to_bits() {
-            // -0 and 0: no turn, but the sine's sign differs.
-            dir = DVec2::from_angle(heading);
-        }
-        let at = |pos: DVec2, ax: DVec2| Obb { c: pos, ax, hl, hw };
-        let mut rem = dir * (v * dt);
-        let mut touched: Vec<Owner> = Vec::new();
-        for _ in 0..4 {
-            if rem.length_squared() < 1e-24 {
-                break;
-            }
-            let moving = at(pos, dir);
-            let corners = moving.corners();
-            // Only edges near the swept box can be hit (the sweep's contacts lie in it).
-            let (lo, hi) = moving.aabb();
-            let (lo, hi) = (lo.min(lo + rem), hi.max(hi + rem));
-            looked.add(lo, hi);
-            let mut hit: Option<(f64, DVec2, Owner)> = None;
-            for &(a, b, o) in edges {
-                if apart(a, b, lo, hi) {
-                    continue;
-                }
-                if let Some((s, n)) = sweep_segment(&corners, rem, a, b) {
-                    if hit.is_none_or(|(hs, _, _)| s < hs) {
-                        hit = Some((s, n, o));
-                    }
-                }
-            }
-            match hit {
-                None => {
-                    pos += rem;
-                    break;
-                }
-                Some((s, n, o)) => {
-                    pos += rem * s + n * SKIN;
-                    if !touched.contains(&o) {
-                        touched.push(o);
-                    }
-                    rem *= 1.0 - s;
-                    let into = rem.dot(n);
-                    if into < 0.0 {
-                        rem -= n * into;
-                    }
-                }
-            }
-        }
-        if deepest(edges, &at(pos, dir), &mut looked).is_some() {
-            pos = st.pos;
-            heading = st.heading;
-            dir = start.ax;
-        }
-        let moved = pos - st.pos;
-        Move {
-            pos,
-            heading,
-            omega: wrap_angle(heading - st.heading) / dt,
-            actual_speed: moved.length() / dt,
-            speed: if touched.is_empty() {
-                v
-            } else {
-                moved.dot(dir) / dt
-            },
-            travelled: moved.length(),
-            footprint: at(pos, dir),
-            touched,
-            looked,
-        }
+        plan_move(&self.world, &self.robots[i], i, action, self.opts.dt, sc)
     }
 
     fn commit_move(&mut self, i: usize, m: Move, t: f64) {
