@@ -302,7 +302,7 @@ impl Default for Mind {
 }
 
 /// What Algorithm 1 concluded this step, before the controller's command is shaped.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Default)]
 pub struct Perception {
     /// Active roles: of the elements sensed, the zone, and the robot's C-2.
     pub roles: RoleSet,

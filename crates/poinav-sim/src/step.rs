@@ -88,6 +88,9 @@ enum Owner {
     Robot(u32),
 }
 
+/// A robot's events of its perception in a step and the clearance measurement it made.
+type Perceived = (Vec<Event>, Option<PendingClearance>);
+
 /// Per-thread buffers of a move.
 #[derive(Debug, Default)]
 struct Scratch {
@@ -137,6 +140,9 @@ struct Move {
     speed: f64,
     travelled: f64,
     footprint: Obb,
+    /// The footprint's bounding box and the world's cells it covers.
+    bounds: (DVec2, DVec2),
+    cells: [u32; 4],
     touched: Vec<Owner>,
     /// Where the move tested its edges.
     looked: Region,
@@ -343,6 +349,8 @@ fn plan_move(
         dir = start.ax;
     }
     let moved = pos - st.pos;
+    let footprint = at(pos, dir);
+    let bounds = footprint.aabb();
     Move {
         pos,
         heading,
@@ -354,7 +362,9 @@ fn plan_move(
             moved.dot(dir) / dt
         },
         travelled: moved.length(),
-        footprint: at(pos, dir),
+        footprint,
+        bounds,
+        cells: world.rect(bounds),
         touched,
         looked,
     }
@@ -409,6 +419,9 @@ pub struct Sim<'f> {
     arrived: Vec<bool>,
     readings: Vec<Reading>,
     perceptions: Vec<Perception>,
+    /// Each robot's events and clearance measurement of its perception in this step (kept for
+    /// their memory).
+    perceived: Vec<Perceived>,
     /// Each robot's move of the step planned with its decision (against the boxes at the
     /// start of the step), before the moves are committed.
     guesses: Vec<Option<(Move, Near)>>,
@@ -551,6 +564,7 @@ impl<'f> Sim<'f> {
             arrived: vec![false; n],
             readings: Vec::with_capacity(n),
             perceptions: Vec::with_capacity(n),
+            perceived: Vec::new(),
             guesses: Vec::with_capacity(n),
             sequential_moves: false,
             ray_dirs: vec![(None, [DVec2::ZERO; 5]); n],
@@ -699,28 +713,38 @@ impl<'f> Sim<'f> {
             step: self.step,
             t,
         };
-        type Perceived = (Vec<Event>, Perception, Option<PendingClearance>);
-        let run = |i: usize, db: &PoiDb, mind: &mut Mind, reading: &Reading| -> Perceived {
-            let (mut events, mut observations) = (Vec::new(), Vec::new());
+        // Robot `i` perceives into its perception, its events and its clearance measurement.
+        let run = |i: usize,
+                   db: &PoiDb,
+                   mind: &mut Mind,
+                   reading: &Reading,
+                   p: &mut Perception,
+                   (events, pending): &mut Perceived| {
+            events.clear();
+            let mut observations = Vec::new();
             let mut sink = Sink {
-                events: &mut events,
+                events,
                 observations: &mut observations,
             };
-            let (p, pending) = algorithm1::perceive(i, reading, &env, db, mind, &mut sink);
-            (events, p, pending)
+            (*p, *pending) = algorithm1::perceive(i, reading, &env, db, mind, &mut sink);
         };
         // Each robot perceives on a copy of its mind (the copies reuse last step's memory).
+        let n = self.robots.len();
         let mut next = std::mem::take(&mut self.next_minds);
-        next.resize_with(self.minds.len(), Mind::new);
-        self.readings.resize(self.robots.len(), Reading::NONE);
+        next.resize_with(n, Mind::new);
+        self.readings.resize(n, Reading::NONE);
+        self.perceptions.resize_with(n, Perception::default);
+        let mut perceived = std::mem::take(&mut self.perceived);
+        perceived.resize_with(n, Default::default);
         let (db, minds, robots, world) = (&self.db, &self.minds, &self.robots, &self.world);
-        let guesses: Vec<Perceived> = next
-            .par_iter_mut()
+        next.par_iter_mut()
             .zip(self.readings.par_iter_mut())
             .zip(self.ray_dirs.par_iter_mut())
+            .zip(self.perceptions.par_iter_mut())
+            .zip(perceived.par_iter_mut())
             .enumerate()
             .with_min_len(8)
-            .map(|(i, ((mind, reading), (key, dirs)))| {
+            .for_each(|(i, ((((mind, reading), (key, dirs)), p), out))| {
                 let r = &robots[i];
                 let h = r.state.heading;
                 if *key != Some(h.to_bits()) {
@@ -729,31 +753,36 @@ impl<'f> Sim<'f> {
                 }
                 *reading = sensor::sense_along(world, i, r.state.pos, *dirs, RANGE_M);
                 mind.clone_from(&minds[i]);
-                run(i, db, mind, reading)
-            })
-            .collect();
-        self.perceptions.clear();
+                run(i, db, mind, reading, p, out);
+            });
+        // The database's updates in robot order; after a change, the later robots perceive
+        // again (as the sequential loop would have them).
         let mut changed = false;
-        for (i, guess) in guesses.into_iter().enumerate() {
-            let (events, p, pending) = if changed {
+        for (i, out) in perceived.iter_mut().enumerate() {
+            if changed {
                 next[i].clone_from(&self.minds[i]);
-                run(i, &self.db, &mut next[i], &self.readings[i])
-            } else {
-                guess
-            };
+                run(
+                    i,
+                    &self.db,
+                    &mut next[i],
+                    &self.readings[i],
+                    &mut self.perceptions[i],
+                    out,
+                );
+            }
+            let (events, pending) = out;
             let split = pending.map_or(events.len(), |c| c.events_before);
-            let mut events = events.into_iter();
-            self.events.extend(events.by_ref().take(split));
+            self.events.extend(events.drain(..split));
             if let Some(c) = pending {
                 let mut sink = Sink {
                     events: &mut self.events,
                     observations: &mut self.observations,
                 };
-                changed |= algorithm1::apply_clearance(i, &c, &env, &mut self.db, &mut sink);
+                changed |= algorithm1::apply_clearance(i, c, &env, &mut self.db, &mut sink);
             }
-            self.events.extend(events);
-            self.perceptions.push(p);
+            self.events.append(events);
         }
+        self.perceived = perceived;
         std::mem::swap(&mut self.minds, &mut next);
         self.next_minds = next;
         let nearest: Vec<Option<(u32, f64)>> = self.perceptions.iter().map(|p| p.nearest).collect();
@@ -899,16 +928,15 @@ impl<'f> Sim<'f> {
         actions: &[Command],
         t: f64,
     ) {
-        // Per robot already moved in this step: its box before the move.
-        let mut moved: Vec<Option<Obb>> = vec![None; actions.len()];
+        // Per robot already moved in this step: its box's bounding box before the move.
+        let mut moved: Vec<Option<(DVec2, DVec2)>> = vec![None; actions.len()];
         let mut sc = Scratch::default();
         for (i, (guess, near)) in guesses.enumerate() {
             // Redone only when a neighbour that moved was, or now is, where the move looked.
             let redo = self.sequential_moves
                 || near.as_slice().iter().any(|&j| {
-                    moved[j as usize].is_some_and(|old| {
-                        let (lo, hi) = old.aabb();
-                        let (nlo, nhi) = self.world.robot(j as usize).aabb();
+                    moved[j as usize].is_some_and(|(lo, hi)| {
+                        let (nlo, nhi) = self.world.robot_aabb(j as usize);
                         guess.looked.meets(lo, hi) || guess.looked.meets(nlo, nhi)
                     })
                 });
@@ -917,9 +945,8 @@ impl<'f> Sim<'f> {
             } else {
                 guess
             };
-            let before = *self.world.robot(i);
-            if m.footprint != before {
-                moved[i] = Some(before);
+            if m.footprint != *self.world.robot(i) {
+                moved[i] = Some(self.world.robot_aabb(i));
             }
             self.commit_move(i, m, t);
         }
@@ -939,7 +966,7 @@ impl<'f> Sim<'f> {
         r.state.speed = m.speed;
         r.state.odometer += m.travelled;
         // `m.footprint` is the footprint at the new pose.
-        self.world.update_robot(i, m.footprint);
+        self.world.place_robot(i, m.footprint, m.bounds, m.cells);
         for o in &m.touched {
             if !self.touching[i].contains(o) {
                 let (with, class) = match *o {

@@ -57,7 +57,11 @@ impl Crossings {
     }
 
     /// The doors crossed no farther than `limit`, sorted by door index for determinism.
+    #[inline]
     fn before(mut self, limit: f64) -> Passages {
+        if self.n == 0 {
+            return Passages::default();
+        }
         let mut k = 0;
         while k < self.n as usize {
             if self.dist[k] > limit {
@@ -70,9 +74,16 @@ impl Crossings {
             }
         }
         let n = self.n as usize;
-        let mut doors = self.doors;
-        doors[..n].sort_unstable();
-        doors[n..].fill(0);
+        let mut doors = [0; Passages::CAP];
+        for (k, &d) in self.doors[..n].iter().enumerate() {
+            // Insertion into the sorted head (at most four doors).
+            let mut j = k;
+            while j > 0 && doors[j - 1] > d {
+                doors[j] = doors[j - 1];
+                j -= 1;
+            }
+            doors[j] = d;
+        }
         Passages { n: self.n, doors }
     }
 }
@@ -333,7 +344,7 @@ impl World {
     }
 
     /// The cells the bounding box `lo`-`hi` covers, as `[x0, y0, x1, y1]`.
-    fn rect(&self, (lo, hi): (DVec2, DVec2)) -> [u32; 4] {
+    pub(crate) fn rect(&self, (lo, hi): (DVec2, DVec2)) -> [u32; 4] {
         let (x0, y0) = self.cell_of(lo);
         let (x1, y1) = self.cell_of(hi);
         [x0 as u32, y0 as u32, x1 as u32, y1 as u32]
@@ -381,18 +392,31 @@ impl World {
     /// Moves robot `i`'s box within the step (its grid cells are refreshed next step; queries
     /// are widened by the slack).
     pub fn update_robot(&mut self, i: usize, b: Obb) {
-        self.reach[i] = reach(&b);
+        let aabb = b.aabb();
+        let rect = self.rect(aabb);
+        self.place_robot(i, b, aabb, rect);
+    }
+
+    /// [`World::update_robot`] with the box's bounding box and its cells ([`World::rect`])
+    /// already known (a move computes them in parallel, the moves are placed in order).
+    pub(crate) fn place_robot(&mut self, i: usize, b: Obb, aabb: (DVec2, DVec2), rect: [u32; 4]) {
         let old = &self.boxes[i];
         if (old.hl, old.hw) != (b.hl, b.hw) {
             self.radius[i] = b.radius();
+            self.reach[i] = reach(&b);
         }
-        self.aabbs[i] = b.aabb();
-        let rect = self.rect(self.aabbs[i]);
+        self.aabbs[i] = aabb;
         if rect != self.rects[i] {
             self.rects[i] = rect;
             self.stale = true;
         }
         self.boxes[i] = b;
+    }
+
+    /// Robot `i`'s box's bounding box.
+    #[inline]
+    pub(crate) fn robot_aabb(&self, i: usize) -> (DVec2, DVec2) {
+        self.aabbs[i]
     }
 
     /// Robot `i`'s box's [`Obb::radius`].
