@@ -746,11 +746,9 @@ impl World {
         let (qlo, qhi) = (lo - s, hi + s);
         self.cover(qlo, qhi, |c| {
             for &r in self.robots.cell(c as usize) {
-                if r as usize == skip || out.contains(&r) {
-                    continue;
-                }
                 let (blo, bhi) = self.aabbs[r as usize];
-                if blo.x <= qhi.x && bhi.x >= qlo.x && blo.y <= qhi.y && bhi.y >= qlo.y {
+                let near = blo.x <= qhi.x && bhi.x >= qlo.x && blo.y <= qhi.y && bhi.y >= qlo.y;
+                if near && r as usize != skip && !out.contains(&r) {
                     out.push(r);
                 }
             }
