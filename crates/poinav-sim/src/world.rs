@@ -1,6 +1,7 @@
 //! The spatial index of one storey: every obstacle outline edge and every door passage edge in a
-//! uniform grid (compressed rows), the robots' boxes in the same grid rebuilt each step, exact ray
-//! casts walking the grid cell by cell (Amanatides-Woo), and box queries for contacts.
+//! uniform grid (compressed rows), the robots' boxes in the same grid (rebuilt at the start of a
+//! step when some box changed cells), exact ray casts walking the grid cell by cell
+//! (Amanatides-Woo), and box queries for contacts.
 //!
 //! Why not parry2d: measured on the same rays with equal distances (`benches/ray_casts.rs`),
 //! this index casts 2.6-2.7x faster than parry2d-f64's BVH on the test building and on office-a
