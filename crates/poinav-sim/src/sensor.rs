@@ -56,7 +56,7 @@ pub fn sense(world: &World, me: usize, pos: DVec2, heading: f64, range: f64) -> 
 pub fn sense_along(world: &World, me: usize, pos: DVec2, dirs: [DVec2; 5], range: f64) -> Reading {
     let skip = Some(me as u32);
     let rays = match world.origin(pos) {
-        Some(origin) => dirs.map(|d| world.cast_from(&origin, d, range, skip)),
+        Some(origin) => world.cast_each(&origin, &dirs, range, skip),
         None => dirs.map(|d| world.cast(pos, d, range, skip)),
     };
     Reading { rays, dirs }

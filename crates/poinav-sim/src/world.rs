@@ -521,10 +521,62 @@ impl World {
         )
     }
 
+    /// [`World::cast_from`] along each of `dirs`: the same hits, the grid's slices loaded once
+    /// for all the rays (a robot's five rays share their origin).
+    pub fn cast_each<const N: usize>(
+        &self,
+        origin: &Origin,
+        dirs: &[DVec2; N],
+        range: f64,
+        skip: Option<u32>,
+    ) -> [RayHit; N] {
+        let mut hits = [RayHit::NONE; N];
+        for (hit, &dir) in hits.iter_mut().zip(dirs) {
+            let edge = DVec2::new(
+                if dir.x > 0.0 {
+                    origin.high.x
+                } else {
+                    origin.low.x
+                },
+                if dir.y > 0.0 {
+                    origin.high.y
+                } else {
+                    origin.low.y
+                },
+            );
+            *hit = self.walk_inline(
+                origin.o,
+                dir,
+                range,
+                skip,
+                (origin.cx, origin.cy),
+                edge,
+                range,
+            );
+        }
+        hits
+    }
+
     /// Walks the cells from `(cx, cy)` (whose borders ahead are `edge`) until a hit, `t_out`
     /// or the grid's edge.
     #[allow(clippy::too_many_arguments)]
     fn walk(
+        &self,
+        o: DVec2,
+        dir: DVec2,
+        range: f64,
+        skip: Option<u32>,
+        cell: (usize, usize),
+        edge: DVec2,
+        t_out: f64,
+    ) -> RayHit {
+        self.walk_inline(o, dir, range, skip, cell, edge, t_out)
+    }
+
+    /// [`World::walk`]'s body, inlined where several rays are walked in one call.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn walk_inline(
         &self,
         o: DVec2,
         dir: DVec2,
