@@ -370,6 +370,24 @@ fn plan_move(
     }
 }
 
+/// A record's placeholder before a step writes it.
+fn blank_record() -> StepRecord {
+    StepRecord {
+        step: 0,
+        robot: 0,
+        pos: DVec2::ZERO,
+        heading: 0.0,
+        speed: 0.0,
+        omega: 0.0,
+        action: Command::default(),
+        rays: [crate::world::RayHit::NONE; 5],
+        roles: crate::poi_db::RoleSet::default(),
+        mode: Mode::Idle,
+        zone: None,
+        brush: Brush::paper(),
+    }
+}
+
 /// What a finished run leaves.
 #[derive(Debug, Clone)]
 pub struct RunData {
@@ -687,8 +705,9 @@ impl<'f> Sim<'f> {
             self.records.extend_from_slice(&self.current);
         }
         if advance {
-            let guesses = std::mem::take(&mut self.guesses);
-            self.commit_moves(guesses.into_iter().flatten(), &actions, t);
+            let mut guesses = std::mem::take(&mut self.guesses);
+            self.commit_moves(guesses.iter_mut().filter_map(Option::take), &actions, t);
+            self.guesses = guesses;
         }
         self.actions = actions;
         if !advance {
@@ -812,6 +831,9 @@ impl<'f> Sim<'f> {
         let (nav, floor, behaviour) = (&self.nav, self.floor, &self.opts.behaviour);
         let (readings, perceptions) = (&self.readings, &self.perceptions);
         let (world, dt) = (&self.world, self.opts.dt);
+        // Written in place: a record is about 350 bytes, a move about 200.
+        self.current.resize_with(n, blank_record);
+        self.guesses.resize_with(n, || None);
         self.ctrls
             .par_iter_mut()
             .zip(self.minds.par_iter_mut())
@@ -819,11 +841,17 @@ impl<'f> Sim<'f> {
             .zip(self.arrived.par_iter_mut())
             .zip(actions.par_iter_mut())
             .zip(events.par_iter_mut())
+            .zip(self.current.par_iter_mut())
+            .zip(self.guesses.par_iter_mut())
             .enumerate()
             .with_min_len(8)
-            .map_init(
+            .for_each_init(
                 Scratch::default,
-                |sc, (i, (((((ctrl, mind), robot), arrived), action_out), events))| {
+                |sc,
+                 (
+                    i,
+                    (((((((ctrl, mind), robot), arrived), action_out), events), record), guess),
+                )| {
                     let p = &perceptions[i];
                     let ctx = Ctx {
                         t,
@@ -875,11 +903,11 @@ impl<'f> Sim<'f> {
                             });
                         }
                     }
-                    let guess = plan.then(|| {
+                    *guess = plan.then(|| {
                         let m = plan_move(world, robot, i, action, dt, sc);
                         (m, Near::of(&sc.robots))
                     });
-                    let record = StepRecord {
+                    *record = StepRecord {
                         step,
                         robot: i as u32,
                         pos: robot.state.pos,
@@ -893,10 +921,8 @@ impl<'f> Sim<'f> {
                         zone: mind.zone,
                         brush: robot.state.brush,
                     };
-                    (record, guess)
                 },
-            )
-            .unzip_into_vecs(&mut self.current, &mut self.guesses);
+            );
     }
 
     /// Moves every robot with `actions` (what [`Sim::tick`] does with the moves planned with the
