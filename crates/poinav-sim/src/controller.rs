@@ -158,6 +158,15 @@ pub enum Mode {
 }
 
 impl Mode {
+    /// Every mode, in declaration order (`mode as usize` indexes it).
+    pub const ALL: [Mode; 5] = [
+        Mode::Idle,
+        Mode::Route,
+        Mode::WallFollow,
+        Mode::Keys,
+        Mode::Arrived,
+    ];
+
     /// The trace's name.
     pub fn label(self) -> &'static str {
         match self {

@@ -273,3 +273,13 @@ fn wall_following_settles_at_its_distance() {
             .any(|e| matches!(e.kind, EventKind::Contact { .. })));
     }
 }
+
+/// The trace writer indexes `Mode::ALL` by `mode as usize`.
+#[test]
+fn mode_all_is_in_declaration_order() {
+    for (i, m) in Mode::ALL.iter().enumerate() {
+        assert_eq!(*m as usize, i, "{m:?}");
+    }
+    let labels: Vec<&str> = Mode::ALL.iter().map(|m| m.label()).collect();
+    assert_eq!(labels, ["idle", "route", "wall-follow", "keys", "arrived"]);
+}

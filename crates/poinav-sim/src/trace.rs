@@ -11,6 +11,7 @@ use crate::events::Event;
 use crate::poi_db::RoleSet;
 use crate::robot::Brush;
 use crate::world::{RayHit, Target};
+use poinav_roles::Role;
 
 /// A minimal JSON writer with fixed-decimal numbers (`-0` is written as `0`, trailing zeros
 /// are dropped, non-finite numbers are `null`).
@@ -261,6 +262,10 @@ pub struct LineWriter {
     doors: Vec<Short>,
     /// Zone names, quoted.
     zones: Vec<Short>,
+    /// Role labels, quoted, in [`Role::ALL`]'s order (a [`RoleSet`]'s bits).
+    roles: Vec<Short>,
+    /// Mode labels, quoted, in [`Mode::ALL`]'s order.
+    modes: Vec<Short>,
 }
 
 /// A ray's object up to its distance, per ray in [`crate::sensor::RAY_DEG`] order.
@@ -298,6 +303,8 @@ impl LineWriter {
             robot_hits: names.robot_ids.iter().map(|id| hit(id, "Robot")).collect(),
             doors: names.doors.iter().map(|d| quoted(d)).collect(),
             zones: names.zones.iter().map(|z| quoted(z)).collect(),
+            roles: Role::ALL.iter().map(|r| quoted(r.label())).collect(),
+            modes: Mode::ALL.iter().map(|m| quoted(m.label())).collect(),
         }
     }
 
@@ -340,18 +347,22 @@ impl LineWriter {
         out.put(",\"omega_deg_s\":");
         push_fixed(out, r.action.omega.to_degrees(), 4);
         out.put("},\"mode\":");
-        push_str(out, r.mode.label());
+        self.modes[r.mode as usize].put_into(out);
         out.put(",\"zone\":");
         match r.zone {
             Some(z) => self.zones[z.get()].put_into(out),
             None => out.put("null"),
         }
         out.put(",\"roles\":[");
-        for (k, role) in r.roles.roles().enumerate() {
-            if k > 0 {
-                out.put_ascii(b",");
+        let mut first = true;
+        for (bit, label) in self.roles.iter().enumerate() {
+            if r.roles.0 & (1 << bit) != 0 {
+                if !first {
+                    out.put_ascii(b",");
+                }
+                first = false;
+                label.put_into(out);
             }
-            push_str(out, role.label());
         }
         out.put("],\"brush\":{\"on\":");
         out.put(if r.brush.on { "true" } else { "false" });
