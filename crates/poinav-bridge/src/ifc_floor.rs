@@ -1,12 +1,11 @@
 //! IFC storey -> `poinav_nav::Floor`: a storey floor plan (`poinav-geom`) with the roles,
 //! statuses and coordination of a POI classification, and the spaces each door bounds from
 //! `IfcRelSpaceBoundary` where the model has them (decided here once and stored on the door, so
-//! the navigation graph does not have to guess them from geometry), obstacles thinner than a
-//! grid cell widened to one ([`MIN_OBSTACLE_WIDTH_M`]); and which storey a name picks.
+//! the navigation graph does not have to guess them from geometry); and which storey a name
+//! picks.
 
 use std::collections::{BTreeMap, HashMap};
 
-use poinav_geom::region;
 use poinav_geom::{FloorPlan, PlanItemKind, PlanSource};
 use poinav_ifc::Model;
 use poinav_nav::door_status::Block;
@@ -14,12 +13,6 @@ use poinav_nav::{ElementId, Floor, FloorDoor, FloorObstacle, FloorZone, Obstacle
 use poinav_poi::{AccessibilityKind, AccessibilityStatus, Classification, Classified, Role};
 
 use crate::error::BridgeError;
-
-/// Parts of obstacles thinner than this (metres: the navigation grid's default cell,
-/// `poinav_nav::GridOptions::resolution_m`) are grown by half of it on each side
-/// ([`region::widen_thin`]): a grid samples cells at their centres, and a 5 mm glass panel
-/// between two rows of centres would be no obstacle at all.
-pub const MIN_OBSTACLE_WIDTH_M: f64 = 0.05;
 
 /// What names a storey: its Name and GlobalId, the label used when it has no Name, and whether
 /// its plan has doors.
@@ -126,14 +119,11 @@ pub(crate) fn floor_from_plan(
     };
     for item in &plan.items {
         let c = by_guid.get(item.global_id.as_str()).copied();
-        // Obstacles at least a grid cell wide, so that no cell centre falls either side of a
-        // glass panel or a line and the robot is planned through it.
         let rings = || {
-            region::widen_thin(&item.regions, MIN_OBSTACLE_WIDTH_M)
-                .into_iter()
-                .map(|r| r.outer)
-                .filter(|r| r.len() >= 3)
-                .map(Ring::from)
+            item.regions
+                .iter()
+                .filter(|r| r.outer.len() >= 3)
+                .map(|r| Ring::from(r.outer.clone()))
                 .collect::<Vec<_>>()
         };
         let kind = match item.kind {
@@ -356,13 +346,5 @@ mod tests {
         );
         let c = classified("R-step", K::Stairs, Some((FullAccess, "climbs")), Some(1.2));
         assert_eq!(door_facts(Some(&c)), (None, None));
-    }
-
-    #[test]
-    fn obstacles_are_widened_to_the_default_grid_cell() {
-        assert_eq!(
-            MIN_OBSTACLE_WIDTH_M,
-            poinav_nav::GridOptions::default().resolution_m
-        );
     }
 }

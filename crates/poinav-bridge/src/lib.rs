@@ -31,6 +31,6 @@ mod write_back;
 pub use building::{building, Bridged, Stages};
 pub use dropped::{Dropped, DroppedKind};
 pub use error::BridgeError;
-pub use ifc_floor::{pick, StoreyKey, MIN_OBSTACLE_WIDTH_M};
+pub use ifc_floor::{pick, StoreyKey};
 pub use prepare::{prepare, prepare_with_meshes, Prepared, STAMP};
 pub use write_back::{apply_findings, write_back};

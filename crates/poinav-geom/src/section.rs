@@ -674,7 +674,8 @@ pub(crate) mod tests {
         let s = mesh_section(&desk, 0.05, 1.0);
         assert_eq!(s.len(), 1);
         assert!((total_area(&s) - 0.6).abs() < 1e-6);
-        // A 5 mm glass panel is a solid: its exact 5 mm strip (navigation widens it).
+        // A 5 mm glass panel is a solid: its exact 5 mm strip (the navigation grid occupies
+        // every cell it touches).
         let glass = cuboid(DVec3::ZERO, DVec3::new(3.0, 0.005, 2.0));
         let s = mesh_section(&glass, 0.05, 1.0);
         assert!((total_area(&s) - 0.015).abs() < 1e-6, "{}", total_area(&s));

@@ -6,9 +6,10 @@
 //! section's area terms lose (and the sliver opening would remove anyway). For a robot it is a
 //! wall. Such parts are kept as lines: each band part whose projection is thinner than
 //! [`THIN_M`] gives the segment it lies along, and the segments are drawn [`LINE_WIDTH_M`]
-//! wide (square ends, reaching half that past each end), wider than the default 5 cm cells of
-//! the navigation grid, so every row and column of cells that crosses a line has a cell
-//! centre on it.
+//! wide (square ends, reaching half that past each end): an area the sliver opening keeps,
+//! within half a centimetre of the surface, which the simulator's rays hit where the surface
+//! is. The navigation grid marks every cell such a line touches (its rasteriser draws parts
+//! thinner than a cell conservatively), so no route crosses it.
 //!
 //! The vertical faces of a closed solid lie on or inside its exact section; which of them are
 //! lines is decided by [`crate::section`] (those outside the solid's section only), so solids
@@ -21,8 +22,9 @@ use crate::polygon;
 use crate::region::{self, Region};
 use crate::section::SLIVER_M;
 
-/// How wide lines are drawn, metres: more than the navigation grid's default 5 cm cells.
-pub const LINE_WIDTH_M: f64 = 0.06;
+/// How wide lines are drawn, metres: five times the thinnest part a section keeps (2 x
+/// [`SLIVER_M`]), thin beside anything a robot measures.
+pub const LINE_WIDTH_M: f64 = 0.01;
 
 /// Band parts whose projection is thinner than this (metres) are lines: the section's
 /// sliver opening ([`SLIVER_M`]) would remove them.

@@ -82,6 +82,7 @@ pub mod route_graph;
 pub mod space_name;
 pub mod speed;
 pub mod svg;
+mod thin_cells;
 pub mod zone_index;
 
 pub use audit::{audit, AuditOptions, AuditReport};
