@@ -417,14 +417,15 @@ impl OccupancyGrid {
             .map(|z| past(std::slice::from_ref(&z.ring)))
             .collect();
         let door_sides = bounds::door_side_bounds(floor, limits);
-        // Obstacles are painted with their parts thinner than a cell ([`ThinCells`]).
+        // Obstacles are painted with their parts thinner than a cell ([`ThinCells`]), but
+        // around door passages.
         let frame = Frame {
             width,
             height,
             origin,
             res,
         };
-        let mut thin = ThinCells::default();
+        let mut thin = ThinCells::around_doors(frame, floor.doors.iter().map(|d| &d.ring[..]));
 
         for (k, z) in floor.zones.iter().enumerate().rev() {
             if zone_past[k].is_some() {

@@ -16,13 +16,22 @@
 use glam::DVec2;
 
 use crate::grid::spans;
-use crate::polygon;
+use crate::polygon::{self, PassageFrame};
 
-/// Reusable scratch for [`ThinCells::paint`]: per cell of the current ring's window, which
+/// How far around a door's passage ring (its rectangle in its own frame, grown this much on
+/// every side, metres) thin parts are drawn by their centres alone, as before: door linings
+/// and casings are often thinner than a cell, and touching cells there would narrow the
+/// passage in the grid (the clear width checks and the corpus routes read it as it was).
+pub const DOOR_MARGIN_M: f64 = 0.25;
+
+/// The cells where thin parts are added (all but those around doors, [`DOOR_MARGIN_M`]) and
+/// reusable scratch for [`ThinCells::paint`]: per cell of the current ring's window, which
 /// ring painted it (by a counter, so nothing is cleared between rings); the cells the ring's
 /// edges touch with the edge, and the cells added.
 #[derive(Debug, Default)]
 pub(crate) struct ThinCells {
+    /// Per grid cell, true around a door (empty: no door).
+    at_door: Vec<bool>,
     painted: Vec<u32>,
     tag: u32,
     hits: Vec<(usize, u32)>,
@@ -40,12 +49,33 @@ pub(crate) struct Frame {
 }
 
 impl ThinCells {
+    /// Thin parts added everywhere in `g` but around the passage rings `doors`.
+    pub(crate) fn around_doors<'a>(g: Frame, doors: impl Iterator<Item = &'a [DVec2]>) -> Self {
+        let mut at_door = Vec::new();
+        for ring in doors {
+            let Some(f) = PassageFrame::of(ring) else {
+                continue;
+            };
+            if at_door.is_empty() {
+                at_door = vec![false; g.width * g.height];
+            }
+            let around = f.rectangle(f.half_width + DOOR_MARGIN_M, f.half_depth + DOOR_MARGIN_M);
+            spans(g.width, g.height, g.origin, g.res, &around, |row, a, b| {
+                at_door[row * g.width + a..row * g.width + b].fill(true)
+            });
+        }
+        ThinCells {
+            at_door,
+            ..ThinCells::default()
+        }
+    }
+
     /// Calls `f` with the index of every cell whose centre is inside `ring` (even-odd, as the
     /// grid paints); then, in increasing order, each once, with every other cell `ring`'s
     /// boundary touches where the ring is thinner than a cell: none of the painted cells is in
     /// the 3 x 3 block around it (a tip, a part too small for a centre), or two edges that do
     /// not meet pass through that block facing each other across the ring's inside closer than
-    /// a cell ([`facing_closer`]: a panel, a fin).
+    /// a cell ([`facing_closer`]: a panel, a fin); but none around a door ([`DOOR_MARGIN_M`]).
     pub(crate) fn paint(&mut self, g: Frame, ring: &[DVec2], mut f: impl FnMut(usize)) {
         let Some((lo, hi)) = polygon::bounds(ring) else {
             return;
@@ -78,6 +108,7 @@ impl ThinCells {
         }
         let tag = self.tag;
         let ThinCells {
+            at_door,
             painted,
             hits,
             near,
@@ -142,8 +173,9 @@ impl ThinCells {
                     })
                 })
             };
-            if thin {
-                extra.push((row + r0) * g.width + col + c0);
+            let cell = (row + r0) * g.width + col + c0;
+            if thin && !at_door.get(cell).copied().unwrap_or(false) {
+                extra.push(cell);
             }
         }
         extra.sort_unstable();
@@ -162,10 +194,14 @@ fn nearest(a: DVec2, b: DVec2, p: DVec2) -> DVec2 {
     }
 }
 
+/// How much thinner than a cell two edges must be to be a thin part, metres: a door lining
+/// modelled 5 cm wide comes out 4.9999999 cm in world coordinates, and is a cell thick.
+const SAME_M: f64 = 1e-4;
+
 /// True when the edges `e` and `f` of a ring (inside on their left for `inward` 1, right for
 /// -1) face each other across its inside near `centre` closer than a cell of `res`: from the
 /// point of `e` nearest `centre` to that of `f` is within 45 degrees of both inward normals,
-/// and shorter than `res` times the larger of `e`'s direction's components (a strip at least
+/// and shorter (by [`SAME_M`]) than `res` times the larger of `e`'s direction's components (a strip at least
 /// that thick has a cell centre in every column, or row, it crosses: a 4 cm panel at 45
 /// degrees is drawn by its centres alone, one at 10 degrees is thin).
 fn facing_closer(
@@ -181,7 +217,7 @@ fn facing_closer(
     let (p, q) = (nearest(e.0, e.1, centre), nearest(f.0, f.1, centre));
     let v = q - p;
     let d = v.length();
-    let limit = res * ue.x.abs().max(ue.y.abs()).max(uf.x.abs().max(uf.y.abs()));
+    let limit = res * ue.x.abs().max(ue.y.abs()).max(uf.x.abs().max(uf.y.abs())) - SAME_M;
     if !(d > 0.0 && d < limit) {
         return false;
     }
@@ -190,16 +226,24 @@ fn facing_closer(
     v.dot(ne) >= cos45 * d && -v.dot(nf) >= cos45 * d
 }
 
-/// Calls `f(col, row)` for every cell of `g` the segment `a`-`b` touches (its closed extent
-/// in each row it crosses; cells are `[col, col + 1) x [row, row + 1)`), row by row.
+/// How far into a cell a segment must reach to touch it, in cells (5 µm at 5 cm): a corner or
+/// an edge that lies on a cell's side but for rounding (a model's 18.300000006 m) does not
+/// touch the cell beyond.
+const GRAZE: f64 = 1e-4;
+
+/// Calls `f(col, row)` for every cell of `g` the segment `a`-`b` touches (its extent in each
+/// row it crosses, but for [`GRAZE`] at either end; cells are `[col, col + 1) x [row, row + 1)`),
+/// row by row.
 fn touched(g: Frame, a: DVec2, b: DVec2, mut f: impl FnMut(usize, usize)) {
     let (p, q) = ((a - g.origin) / g.res, (b - g.origin) / g.res);
     if !(p.is_finite() && q.is_finite()) {
         return;
     }
     let (ylo, yhi) = (p.y.min(q.y), p.y.max(q.y));
-    let r0 = ylo.floor().max(0.0);
-    let r1 = yhi.floor().min(g.height as f64 - 1.0);
+    // (A segment shorter than 2 x GRAZE across is in the cell its start is in.)
+    let r0 = (ylo + GRAZE).floor();
+    let r1 = (yhi - GRAZE).floor().max(r0);
+    let (r0, r1) = (r0.max(0.0), r1.min(g.height as f64 - 1.0));
     if r1 < r0 {
         return;
     }
@@ -213,8 +257,9 @@ fn touched(g: Frame, a: DVec2, b: DVec2, mut f: impl FnMut(usize, usize)) {
             let (u, v) = (x(y0), x(y1));
             (u.min(v), u.max(v))
         };
-        let c0 = x0.floor().max(0.0);
-        let c1 = x1.floor().min(g.width as f64 - 1.0);
+        let c0 = (x0 + GRAZE).floor();
+        let c1 = (x1 - GRAZE).floor().max(c0);
+        let (c0, c1) = (c0.max(0.0), c1.min(g.width as f64 - 1.0));
         if c1 < c0 {
             continue;
         }
@@ -390,5 +435,43 @@ mod tests {
             none.push(i)
         });
         assert!(none.is_empty());
+    }
+
+    #[test]
+    fn around_a_door_thin_parts_are_drawn_by_their_centres() {
+        // A 1 m door passage over x 3.0 .. 4.0, y 2.4 .. 2.6, and a casing beside it
+        // reaching into the cells of the passage (2 cm deep); and a 5 mm panel from x 2.01 to 5.99.
+        let door = polygon::rect(3.0, 2.4, 4.0, 2.6);
+        let g = G;
+        let casing = polygon::rect(3.924, 2.6, 4.08, 2.62);
+        let glass = polygon::rect(2.01, 3.51, 5.99, 3.515);
+        let mut thin = ThinCells::around_doors(g, std::iter::once(&door[..]));
+        let mut plain = ThinCells::default();
+        let paint = |t: &mut ThinCells, ring: &[DVec2]| {
+            let mut v = Vec::new();
+            t.paint(g, ring, |i| v.push(i));
+            v
+        };
+        // The casing: column 78 (x 3.90 to 3.95, in the passage) and row 52 touched, no centre
+        // inside; with the door, as its centres draw it (nothing), without, its cells.
+        assert!(paint(&mut thin, &casing).is_empty());
+        assert_eq!(
+            paint(&mut plain, &casing),
+            (78..=81).map(|c| 52 * G.width + c).collect::<Vec<_>>()
+        );
+        // The panel, 0.9 m from the door (beyond DOOR_MARGIN_M): a line of cells either way.
+        let want: Vec<usize> = (40..=119).map(|c| 70 * G.width + c).collect();
+        assert_eq!(paint(&mut thin, &glass), want);
+        assert_eq!(paint(&mut plain, &glass), want);
+        // Moved to 0.2 m from the door, within the margin: its cells over the door's width and
+        // the margin either side (x 2.75 .. 4.25) left out.
+        let near = polygon::rect(2.01, 2.81, 5.99, 2.815);
+        let cells = paint(&mut thin, &near);
+        let cols: Vec<usize> = cells.iter().map(|i| i % G.width).collect();
+        assert_eq!(
+            cols,
+            (40..=54).chain(85..=119).collect::<Vec<_>>(),
+            "{cols:?}"
+        );
     }
 }
