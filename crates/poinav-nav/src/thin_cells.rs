@@ -2,12 +2,14 @@
 //! their centres ([`crate::grid`]), so a 5 mm glass panel, the 1 cm line drawn for a fence
 //! modelled as a surface, or the thin fin of a larger outline can fall between two rows of
 //! centres, or cross them only here and there, and leave free cells a route goes through.
-//! [`ThinCells::paint`] paints a ring as the grid does (cells whose centre is inside), then
+//! `ThinCells::paint` paints a ring as the grid does (cells whose centre is inside), then
 //! also every cell its boundary touches where the ring is thinner than a cell: no cell of its
 //! own is in the 3 x 3 block around it, or two of its edges cross that block facing each other
 //! across the inside closer than a cell. Along a part at least a cell thick neither holds, so
 //! walls, door jambs and furniture come out exactly as before; the floor's obstacles themselves
-//! are never widened (the simulator's rays hit them as they are).
+//! are never widened (the simulator's rays hit them as they are). Around door passages
+//! ([`DOOR_MARGIN_M`]) thin parts are drawn by their centres alone, as before: linings and
+//! casings thinner than a cell would otherwise narrow the grid's passages.
 //!
 //! The work is the grid's fill plus a walk along the boundary (each edge's cells, sorted once;
 //! per cell the edges of its block): linear in the outline and its cells, in a window of the
