@@ -112,8 +112,11 @@ pub(crate) struct Cover {
     cell: DVec2,
     cols: usize,
     rows: usize,
-    /// Per cell (row-major), the edges whose box (grown by [`ON_REGION_M`]) meets it.
-    buckets: Vec<Vec<u32>>,
+    /// Per cell (row-major), the edges whose box (grown by [`ON_REGION_M`]) meets it:
+    /// bucket `i` holds `edge_ids[starts[i]..starts[i + 1]]` (one allocation for all, not
+    /// one per bucket: a plan builds a cover for most meshes in the band).
+    starts: Vec<u32>,
+    edge_ids: Vec<u32>,
 }
 
 impl Cover {
@@ -160,18 +163,42 @@ impl Cover {
             cell,
             cols,
             rows,
-            buckets: vec![Vec::new(); cols * rows],
+            starts: vec![0; cols * rows + 1],
+            edge_ids: Vec::new(),
         };
-        for (k, [a, b]) in cover.edges.iter().enumerate() {
-            let (c0, r0) = cover.cell_of(a.min(*b) - e);
-            let (c1, r1) = cover.cell_of(a.max(*b) + e);
+        // Counted, then placed (the cells each edge's box meets, twice).
+        let spans: Vec<((usize, usize), (usize, usize))> = cover
+            .edges
+            .iter()
+            .map(|[a, b]| (cover.cell_of(a.min(*b) - e), cover.cell_of(a.max(*b) + e)))
+            .collect();
+        for &((c0, r0), (c1, r1)) in &spans {
             for r in r0..=r1 {
                 for c in c0..=c1 {
-                    cover.buckets[r * cols + c].push(k as u32);
+                    cover.starts[r * cols + c + 1] += 1;
+                }
+            }
+        }
+        for i in 0..cols * rows {
+            cover.starts[i + 1] += cover.starts[i];
+        }
+        let mut next: Vec<u32> = cover.starts[..cols * rows].to_vec();
+        cover.edge_ids = vec![0; cover.starts[cols * rows] as usize];
+        for (k, &((c0, r0), (c1, r1))) in spans.iter().enumerate() {
+            for r in r0..=r1 {
+                for c in c0..=c1 {
+                    let slot = &mut next[r * cols + c];
+                    cover.edge_ids[*slot as usize] = k as u32;
+                    *slot += 1;
                 }
             }
         }
         cover
+    }
+
+    /// The edges of bucket `i`.
+    fn bucket(&self, i: usize) -> &[u32] {
+        &self.edge_ids[self.starts[i] as usize..self.starts[i + 1] as usize]
     }
 
     /// The cell holding `p` (swapped coordinates), clamped to the grid.
@@ -191,7 +218,7 @@ impl Cover {
             return false;
         }
         let (c, r) = self.cell_of(p);
-        let near = self.buckets[r * self.cols + c].iter().any(|&k| {
+        let near = self.bucket(r * self.cols + c).iter().any(|&k| {
             let [a, b] = self.edges[k as usize];
             polygon::segment_distance(a, b, p) <= ON_REGION_M
         });
@@ -201,7 +228,7 @@ impl Cover {
         // Even-odd along +x: each edge crossing the ray counted in the cell its crossing is in.
         let mut inside = false;
         for cc in c..self.cols {
-            for &k in &self.buckets[r * self.cols + cc] {
+            for &k in self.bucket(r * self.cols + cc) {
                 let [a, b] = self.edges[k as usize];
                 if (a.y > p.y) == (b.y > p.y) {
                     continue;
@@ -222,7 +249,11 @@ impl Cover {
 
     #[cfg(test)]
     fn largest_bucket(&self) -> usize {
-        self.buckets.iter().map(Vec::len).max().unwrap_or(0)
+        self.starts
+            .windows(2)
+            .map(|w| (w[1] - w[0]) as usize)
+            .max()
+            .unwrap_or(0)
     }
 }
 

@@ -78,11 +78,27 @@ impl ThinCells {
     /// the 3 x 3 block around it (a tip, a part too small for a centre), or two edges that do
     /// not meet pass through that block facing each other across the ring's inside closer than
     /// a cell ([`facing_closer`]: a panel, a fin); but none around a door ([`DOOR_MARGIN_M`]).
-    pub(crate) fn paint(&mut self, g: Frame, ring: &[DVec2], mut f: impl FnMut(usize)) {
+    pub(crate) fn paint(&mut self, g: Frame, ring: &[DVec2], f: impl FnMut(usize)) {
+        self.paint_searching(g, ring, f, false);
+    }
+
+    /// [`ThinCells::paint`], searching thick convex rings too when `always`.
+    fn paint_searching(
+        &mut self,
+        g: Frame,
+        ring: &[DVec2],
+        mut f: impl FnMut(usize),
+        always: bool,
+    ) {
         let Some((lo, hi)) = polygon::bounds(ring) else {
             return;
         };
-        if ring.len() < 3 || g.width == 0 || g.height == 0 || !(lo.is_finite() && hi.is_finite()) {
+        if ring.len() < 3
+            || g.width == 0
+            || g.height == 0
+            || !(lo.is_finite() && hi.is_finite())
+            || (!always && thick_convex(ring, g.res))
+        {
             spans(g.width, g.height, g.origin, g.res, ring, |row, a, b| {
                 (row * g.width + a..row * g.width + b).for_each(&mut f)
             });
@@ -150,17 +166,19 @@ impl ThinCells {
             let (col, row) = (i % bw, i / bw);
             // The block's cells in the window (a cell's margin around the ring's box, but where
             // the grid ends).
-            let cells = (0..3usize)
+            let mut cells = (0..3usize)
                 .flat_map(|dr| (0..3usize).map(move |dc| (col + dc, row + dr)))
                 .filter(|&(c, r)| c >= 1 && r >= 1 && c - 1 < bw && r - 1 < bh)
                 .map(|(c, r)| (r - 1) * bw + c - 1);
-            let thin = if !cells.clone().any(|j| painted[j] == tag) {
+            let thin = if !cells.any(|j| painted[j] == tag) {
                 true
             } else {
+                // The edges through the block, a row of three cells at a time.
                 near.clear();
-                for j in cells {
-                    let from = hits.partition_point(|h| h.0 < j);
-                    near.extend(hits[from..].iter().take_while(|h| h.0 == j).map(|h| h.1));
+                for r in row.max(1) - 1..(row + 2).min(bh) {
+                    let (a, b) = (r * bw + col.max(1) - 1, r * bw + (col + 1).min(bw - 1));
+                    let from = hits.partition_point(|h| h.0 < a);
+                    near.extend(hits[from..].iter().take_while(|h| h.0 <= b).map(|h| h.1));
                 }
                 near.sort_unstable();
                 near.dedup();
@@ -183,6 +201,41 @@ impl ThinCells {
         extra.sort_unstable();
         extra.iter().copied().for_each(f);
     }
+}
+
+/// Rings of at most this many points are tested for [`thick_convex`].
+const CONVEX_POINTS: usize = 64;
+
+/// True when `ring` (of at most [`CONVEX_POINTS`] points) is convex, with no corner sharper
+/// than a right angle, and at least a cell of `res` wide (but for [`SAME_M`]) across every
+/// edge: a wall or a table top, which has no part thinner than a cell, so its centres alone
+/// draw it ([`ThinCells::paint`] adds nothing to such a ring, and skips the search).
+fn thick_convex(ring: &[DVec2], res: f64) -> bool {
+    let n = ring.len();
+    if n > CONVEX_POINTS {
+        return false;
+    }
+    let (mut left, mut right) = (false, false);
+    for i in 0..n {
+        let (a, b, c) = (ring[i], ring[(i + 1) % n], ring[(i + 2) % n]);
+        let (d, e) = (b - a, c - b);
+        let turn = d.perp_dot(e);
+        left |= turn > 0.0;
+        right |= turn < 0.0;
+        if d.dot(e) < -1e-9 * d.length() * e.length() || (left && right) {
+            return false;
+        }
+    }
+    (0..n).all(|i| {
+        let (a, b) = (ring[i], ring[(i + 1) % n]);
+        let Some(u) = (b - a).try_normalize() else {
+            return true;
+        };
+        ring.iter()
+            .map(|p| u.perp_dot(*p - a).abs())
+            .fold(0.0, f64::max)
+            >= res - SAME_M
+    })
 }
 
 /// The point of the segment `a`-`b` nearest `p`.
@@ -289,7 +342,7 @@ mod tests {
             centre.extend(row * G.width + a..row * G.width + b)
         });
         let mut all = Vec::new();
-        ThinCells::default().paint(G, ring, |i| all.push(i));
+        ThinCells::default().paint_searching(G, ring, |i| all.push(i), true);
         centre.sort_unstable();
         all.sort_unstable();
         (centre, all)
@@ -359,6 +412,8 @@ mod tests {
                 5.0 + 0.0051 * (k % 11) as f64,
             );
             let ring = turned(c, 2.0, width, deg);
+            // (Searched all the same: the search adds nothing, so skipping it is right.)
+            assert!(thick_convex(&ring, G.res));
             let (centre, all) = both(&ring);
             assert!(!centre.is_empty());
             assert_eq!(centre, all, "{width} m wide at {deg} degrees");
@@ -383,6 +438,11 @@ mod tests {
     fn a_panel_thinner_than_a_cell_is_a_line_of_cells() {
         // 5 mm glass between two rows of centres: no centre inside, one row of cells along it.
         let glass = polygon::rect(2.01, 2.51, 5.99, 2.515);
+        assert!(!thick_convex(&glass, G.res));
+        assert!(!thick_convex(
+            &turned(DVec2::ONE, 1.0, 0.5, 0.0)[..3],
+            G.res
+        ));
         let (centre, all) = both(&glass);
         assert!(centre.is_empty());
         // Columns 40..=119 (x = 2.01 to 5.99) of row 50 (y 2.50 to 2.55).
