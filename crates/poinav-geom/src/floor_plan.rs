@@ -5,7 +5,8 @@
 //!
 //! How each product is drawn:
 //! - its mesh ([`crate::mesh_model`], openings already cut) is cut by the band
-//!   ([`crate::section::mesh_section`], exact for solids);
+//!   ([`crate::section::mesh_section`], exact for solids; surfaces crossing the band, such as
+//!   fences modelled as open profiles, are lines [`crate::section_lines::LINE_WIDTH_M`] wide);
 //! - a section that reaches a bound ([`SectionBounds`]) is drawn as its conservative outline
 //!   ([`PlanSource::Outline`], unknown space to navigation) and listed in
 //!   [`FloorPlan::problems`];

@@ -76,6 +76,7 @@ pub mod representation;
 pub mod representation_mesh;
 pub mod revolve;
 pub mod section;
+pub mod section_lines;
 pub mod sectioned_solid;
 pub mod self_crossing;
 pub mod surface;

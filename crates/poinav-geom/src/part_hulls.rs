@@ -6,16 +6,17 @@
 //! polygon boolean ([`crate::section`]). For a robot, such a piece is an obstacle to keep clear
 //! of, not a shape to thread between: each connected part (a leg, a seat, a table top, welded
 //! by vertex position) is drawn as the convex hull of its triangles clipped to the slab, which
-//! holds the exact section, so obstacles only grow. The cost is linear in the triangles plus a
-//! hull per part.
+//! holds the exact section, so obstacles only grow (a part whose hull has no area, a flat
+//! vertical panel, is drawn as a line, [`crate::section_lines`]). The cost is linear in the
+//! triangles plus a hull per part.
 
 use glam::DVec2;
 use rustc_hash::FxHashMap;
 
 use crate::mesh::Mesh;
-use crate::polygon;
 use crate::region::{self, Region};
 use crate::section::clip;
+use crate::section_lines::hull_or_line;
 
 /// Meshes of furnishings with at least this many triangles are drawn from their parts' hulls.
 pub const DENSE_TRIANGLES: usize = 1_500;
@@ -83,10 +84,7 @@ pub fn part_hulls(mesh: &Mesh, z_min: f64, z_max: f64) -> Vec<Region> {
     // Sorted by part root, so the union sees its inputs in the same order every run.
     let mut roots: Vec<u32> = parts.keys().copied().collect();
     roots.sort_unstable();
-    let hulls: Vec<Region> = roots
-        .iter()
-        .filter_map(|r| Region::from_ring(polygon::convex_hull(&parts[r])))
-        .collect();
+    let hulls: Vec<Region> = roots.iter().flat_map(|r| hull_or_line(&parts[r])).collect();
     region::union(&hulls)
 }
 
@@ -122,12 +120,24 @@ mod tests {
         // Below the top: four separate legs, not one hull over the whole table.
         let low = part_hulls(&table, 0.05, 0.5);
         assert_eq!(low.len(), 4);
-        assert!((region::total_area(&low) - 4.0 * 0.0025).abs() < 1e-9);
+        assert!((region::total_area(&low) - 4.0 * 0.0025).abs() < 1e-6);
         // Up to 1 m the top is in the band: the table's whole outline.
         let high = part_hulls(&table, 0.05, 1.0);
         assert_eq!(high.len(), 1);
-        assert!((region::total_area(&high) - 0.6).abs() < 1e-9);
+        assert!((region::total_area(&high) - 0.6).abs() < 1e-6);
         // Above it, nothing.
         assert!(part_hulls(&table, 0.8, 1.0).is_empty());
+        // A flat vertical panel as a part of its own: a line, not nothing.
+        let panel = crate::section::tests::sheet(
+            glam::DVec2::new(0.0, -1.0),
+            glam::DVec2::new(1.0, -1.0),
+            0.0,
+            0.7,
+        );
+        let with_panel = merged(&[table, panel]);
+        let w = crate::section_lines::LINE_WIDTH_M;
+        let low = part_hulls(&with_panel, 0.05, 0.5);
+        assert_eq!(low.len(), 5);
+        assert!((region::total_area(&low) - 4.0 * 0.0025 - (1.0 + w) * w).abs() < 1e-6);
     }
 }

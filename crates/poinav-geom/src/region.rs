@@ -11,7 +11,8 @@ use i_overlay::core::fill_rule::FillRule;
 use i_overlay::core::overlay_rule::OverlayRule;
 use i_overlay::float::overlay::FloatOverlay;
 use i_overlay::mesh::outline::offset::OutlineOffset;
-use i_overlay::mesh::style::{LineJoin, OutlineStyle};
+use i_overlay::mesh::stroke::offset::StrokeOffset;
+use i_overlay::mesh::style::{LineCap, LineJoin, OutlineStyle, StrokeStyle};
 use serde::{Deserialize, Serialize};
 
 use crate::polygon;
@@ -215,6 +216,27 @@ pub fn open(regions: &[Region], eps: f64) -> Vec<Region> {
     grown.into_iter().filter_map(region_of).collect()
 }
 
+/// The segments `a`-`b` drawn `width` wide, with square ends reaching `width / 2` past each
+/// end, united. Segments of no length are left out.
+pub fn strokes(segments: &[[DVec2; 2]], width: f64) -> Vec<Region> {
+    let paths: Vec<Contour> = segments
+        .iter()
+        .filter(|[a, b]| a.distance(*b) > 0.0 && a.is_finite() && b.is_finite())
+        .map(|[a, b]| vec![[a.x, a.y], [b.x, b.y]])
+        .collect();
+    if paths.is_empty() || width.is_nan() || width <= 0.0 {
+        return Vec::new();
+    }
+    let style = StrokeStyle::new(width)
+        .start_cap(LineCap::Square)
+        .end_cap(LineCap::Square);
+    paths
+        .stroke(style, false)
+        .into_iter()
+        .filter_map(region_of)
+        .collect()
+}
+
 fn region_of(shape: Vec<Contour>) -> Option<Region> {
     let mut rings = shape
         .into_iter()
@@ -308,5 +330,21 @@ mod tests {
         );
         assert_eq!(opened.iter().map(|r| r.holes.len()).sum::<usize>(), 1);
         assert!(open(&[rect(0.0, 0.0, 1.0, 0.0015)], 0.001).is_empty());
+    }
+
+    #[test]
+    fn strokes_unite_and_reach_past_their_ends() {
+        let l = strokes(
+            &[
+                [DVec2::new(0.0, 2.0), DVec2::new(2.5, 2.0)],
+                [DVec2::new(2.5, 2.0), DVec2::new(2.5, 5.0)],
+                [DVec2::new(1.0, 1.0), DVec2::new(1.0, 1.0)],
+            ],
+            0.06,
+        );
+        assert_eq!(l.len(), 1);
+        let want = 2.56 * 0.06 + 3.06 * 0.06 - 0.06 * 0.06;
+        assert!((total_area(&l) - want).abs() < 1e-6, "{}", total_area(&l));
+        assert!(strokes(&[], 0.06).is_empty());
     }
 }

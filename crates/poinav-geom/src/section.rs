@@ -25,10 +25,18 @@
 //! faces behind, whose projections would be slivers reaching into door gaps: every part of a
 //! section thinner than 2 x [`SLIVER_M`] is removed ([`region::open`]).
 //!
+//! A surface crossing the slab (a fence or a balustrade modelled as an extruded open profile
+//! or a surface model, a sheet of an open mesh) has (almost) no projected area there, and would
+//! be lost: each part of a triangle inside the slab whose projection is thinner than
+//! [`crate::section_lines::THIN_M`] gives the segment it lies along, and the segments the
+//! areas above do not already hold (a solid's own side faces always lie in its section) are
+//! drawn [`crate::section_lines::LINE_WIDTH_M`] wide and added. Solids, and open meshes whose
+//! sides stand under faces they have in the slab, come out exactly as without lines.
+//!
 //! Sectioning is bounded ([`SectionBounds`]): a section whose outline has more edges than the
 //! boolean should be given, or that takes too long, is given up ([`CutOff`]) with a
-//! conservative outline instead, the convex hull of everything the mesh has in the slab, which
-//! callers draw as unknown space.
+//! conservative outline instead, the convex hull of everything the mesh has in the slab (a
+//! line when that hull has no area), which callers draw as unknown space.
 
 use std::fmt;
 use std::time::{Duration, Instant};
@@ -38,8 +46,8 @@ use i_overlay::core::overlay_rule::OverlayRule;
 use serde::{Deserialize, Serialize};
 
 use crate::mesh::Mesh;
-use crate::polygon;
 use crate::region::{self, overlay_rings, Region};
+use crate::section_lines::{hull_or_line, Cover, Lines};
 use crate::winding_chain::WindingChain;
 
 /// Half the thickness below which parts of a section are dropped as slivers, metres.
@@ -57,7 +65,7 @@ const CLOCK_EVERY: usize = 1024;
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct SectionBounds {
     /// Most edges of the outline handed to the polygon boolean (what is left of the mesh's
-    /// projected edges after neighbours cancel). Deterministic.
+    /// projected edges after neighbours cancel, and four per line). Deterministic.
     pub max_edges: usize,
     /// Longest time for one mesh, seconds (only pathological meshes depend on the machine).
     pub time_limit_s: f64,
@@ -182,6 +190,7 @@ fn section(
     let closed = slab.is_some() && is_closed(mesh);
     let mut slice = WindingChain::new();
     let mut band = WindingChain::new();
+    let mut lines = Lines::default();
     let (mut a, mut b) = (Vec::with_capacity(8), Vec::with_capacity(8));
     for (k, t) in mesh.triangles.iter().enumerate() {
         if k % CLOCK_EVERY == 0 && past(deadline) {
@@ -213,7 +222,8 @@ fn section(
                 clip(above, z_max, false, &mut b);
                 &b
             };
-            add_normalised(&mut band, inside);
+            let area = add_normalised(&mut band, inside);
+            lines.add_if_thin(inside, area);
         }
     }
     let edges = slice.len() + band.len();
@@ -237,23 +247,53 @@ fn section(
     } else {
         overlay_rings(&band, &[], rule)
     };
-    Ok(region::open(&regions, SLIVER_M))
+    // A closed solid's faces in the slab lie in its section, and so do an open mesh's sides
+    // under a face it has in the slab: only what the areas do not hold (a sheet on its own, a
+    // surface beside the solids of one element) is a line.
+    if !lines.is_empty() {
+        let cover = Cover::new(&regions);
+        let mut k = 0usize;
+        let mut late = false;
+        lines.retain(|a, b| {
+            k += 1;
+            late = late || (k % CLOCK_EVERY == 0 && past(deadline));
+            !late && !cover.holds_segment(a, b)
+        });
+        if late {
+            return Err(give_up(time()));
+        }
+    }
+    if lines.is_empty() {
+        return Ok(region::open(&regions, SLIVER_M));
+    }
+    let edges = edges + 4 * lines.len();
+    if edges > bounds.max_edges {
+        return Err(give_up(SectionLimit::Edges {
+            edges,
+            limit: bounds.max_edges,
+        }));
+    }
+    let mut all = regions;
+    all.extend(lines.regions());
+    Ok(region::open(&region::union(&all), SLIVER_M))
 }
 
-/// Adds the projection of `poly` counter-clockwise, unless it has (almost) no area.
-fn add_normalised(chain: &mut WindingChain, poly: &[DVec3]) {
+/// Adds the projection of `poly` counter-clockwise, unless it has (almost) no area; returns
+/// that area (0 for fewer than three points).
+fn add_normalised(chain: &mut WindingChain, poly: &[DVec3]) -> f64 {
     if poly.len() < 3 {
-        return;
+        return 0.0;
     }
     let a = projected_area(poly);
     if a.abs() < MIN_TRIANGLE_AREA || !a.is_finite() {
-        return;
+        return a;
     }
     if a > 0.0 {
         chain.add(poly.iter().map(|p| p.truncate()));
     } else {
         chain.add(poly.iter().rev().map(|p| p.truncate()));
     }
+    a
 }
 
 /// The signed area of `poly` projected on XY (counter-clockwise positive).
@@ -274,7 +314,7 @@ fn z_range(poly: &[DVec3]) -> (f64, f64) {
 }
 
 /// The convex hull of what `mesh` has inside `slab` (of all of it for `None`), as a region;
-/// empty when that has no area.
+/// a line ([`hull_or_line`]) when that has no area (a sheet), empty when nothing is there.
 fn hull_in(mesh: &Mesh, slab: Option<(f64, f64)>) -> Vec<Region> {
     let mut points: Vec<DVec2> = Vec::new();
     let (mut a, mut b) = (Vec::with_capacity(8), Vec::with_capacity(8));
@@ -292,9 +332,7 @@ fn hull_in(mesh: &Mesh, slab: Option<(f64, f64)>) -> Vec<Region> {
         clip(&a, z_max, false, &mut b);
         points.extend(b.iter().map(|p| p.truncate()));
     }
-    Region::from_ring(polygon::convex_hull(&points))
-        .into_iter()
-        .collect()
+    hull_or_line(&points)
 }
 
 /// True when the mesh encloses volumes, as far as sections need: its triangles' projections on
@@ -349,6 +387,7 @@ fn crossing(a: DVec3, b: DVec3, z: f64) -> DVec3 {
 #[cfg(test)]
 pub(crate) mod tests {
     use super::*;
+    use crate::polygon;
     use crate::region::total_area;
 
     /// A closed box, faces outwards.
@@ -557,6 +596,96 @@ pub(crate) mod tests {
         let cut = mesh_shadow_within(&s, &now).unwrap_err();
         assert_eq!(cut.limit, SectionLimit::Time { seconds: 0.0 });
         assert!((cut.outline[0].area() - total_area(&mesh_shadow(&s))).abs() < 1e-5);
+    }
+
+    /// A vertical quad (two triangles) from `a` to `b` between heights `z0` and `z1`.
+    pub(crate) fn sheet(a: DVec2, b: DVec2, z0: f64, z1: f64) -> Mesh {
+        Mesh {
+            positions: vec![a.extend(z0), b.extend(z0), b.extend(z1), a.extend(z1)],
+            triangles: vec![[0, 1, 2], [0, 2, 3]],
+        }
+    }
+
+    #[test]
+    fn a_sheet_in_the_band_is_a_line_and_solids_stay_exact() {
+        use crate::section_lines::LINE_WIDTH_M as W;
+        let (a, b) = (DVec2::ZERO, DVec2::new(3.0, 0.0));
+        // A fence 3 m long and 1.2 m high: a strip as wide as a line, square ends.
+        let fence = sheet(a, b, 0.0, 1.2);
+        assert!(!is_closed(&fence));
+        let s = mesh_section(&fence, 0.05, 1.0);
+        assert_eq!(s.len(), 1);
+        assert!(
+            (total_area(&s) - (3.0 + W) * W).abs() < 1e-6,
+            "{}",
+            total_area(&s)
+        );
+        let (lo, hi) = s[0].bounds();
+        assert!(
+            (lo - DVec2::new(-W / 2.0, -W / 2.0)).length() < 1e-6,
+            "{lo}"
+        );
+        assert!(
+            (hi - DVec2::new(3.0 + W / 2.0, W / 2.0)).length() < 1e-6,
+            "{hi}"
+        );
+        // Below the band and above it: nothing; reaching into its top only: the same line.
+        assert!(mesh_section(&sheet(a, b, 0.0, 0.04), 0.05, 1.0).is_empty());
+        assert!(mesh_section(&sheet(a, b, 1.1, 2.0), 0.05, 1.0).is_empty());
+        assert_eq!(mesh_section(&sheet(a, b, 0.9, 2.0), 0.05, 1.0), s);
+        // Posts with a sheet between them (closed as a whole: the sheet has no shadow): the
+        // posts and the line, 0.02 + 3 x W m² once the overlaps are taken off.
+        let mut rail = cuboid(DVec3::new(-0.1, -0.05, 0.0), DVec3::new(0.0, 0.05, 1.2));
+        rail.append(&cuboid(
+            DVec3::new(3.0, -0.05, 0.0),
+            DVec3::new(3.1, 0.05, 1.2),
+        ));
+        rail.append(&fence);
+        assert!(is_closed(&rail));
+        let s = mesh_section(&rail, 0.05, 1.0);
+        assert_eq!(s.len(), 1);
+        assert!(
+            (total_area(&s) - (0.02 + 3.0 * W)).abs() < 1e-6,
+            "{}",
+            total_area(&s)
+        );
+        // The same with the sheet starting and ending at the posts' corners.
+        let mut cornered = cuboid(DVec3::new(-0.1, 0.0, 0.0), DVec3::new(0.0, 0.1, 1.2));
+        cornered.append(&cuboid(
+            DVec3::new(3.0, 0.0, 0.0),
+            DVec3::new(3.1, 0.1, 1.2),
+        ));
+        cornered.append(&fence);
+        let s = mesh_section(&cornered, 0.05, 1.0);
+        let want = 0.02 + (3.0 + W) * W - 2.0 * (W / 2.0) * (W / 2.0);
+        assert!((total_area(&s) - want).abs() < 1e-6, "{}", total_area(&s));
+        // A sheet on a wall's face, and an open desk (no bottom) whose sides stand under its
+        // top: the areas hold them, the sections are the solids' alone, value for value.
+        let wall = cuboid(DVec3::ZERO, DVec3::new(5.0, 0.2, 3.0));
+        let mut faced = wall.clone();
+        faced.append(&sheet(DVec2::new(1.0, 0.0), DVec2::new(2.0, 0.0), 0.0, 3.0));
+        assert_eq!(
+            mesh_section(&faced, 0.05, 1.0),
+            mesh_section(&wall, 0.05, 1.0)
+        );
+        let mut desk = cuboid(DVec3::ZERO, DVec3::new(1.0, 0.6, 0.75));
+        desk.triangles.drain(0..2);
+        assert!(!is_closed(&desk));
+        let s = mesh_section(&desk, 0.05, 1.0);
+        assert_eq!(s.len(), 1);
+        assert!((total_area(&s) - 0.6).abs() < 1e-6);
+        // A 5 mm glass panel is a solid: its exact 5 mm strip (the navigation grid occupies
+        // every cell it touches).
+        let glass = cuboid(DVec3::ZERO, DVec3::new(3.0, 0.005, 2.0));
+        let s = mesh_section(&glass, 0.05, 1.0);
+        assert!((total_area(&s) - 0.015).abs() < 1e-6, "{}", total_area(&s));
+        // A sheet past the edge bound: the line stands in for its hull, which has no area.
+        let few = SectionBounds {
+            max_edges: 1,
+            ..SectionBounds::default()
+        };
+        let cut = mesh_section_within(&fence, 0.05, 1.0, &few).unwrap_err();
+        assert!((total_area(&cut.outline) - (3.0 + W) * W).abs() < 1e-6);
     }
 
     #[test]

@@ -159,7 +159,9 @@ fn alignments_match_ifcopenshell() {
         .map(|i| i.name.clone().unwrap_or_default())
         .collect();
     // The uncontained courses are on the site's plan; the extruded cross profile is a
-    // vertical surface, with no shadow.
+    // vertical surface, with no shadow: its cut is a line along its three widths (2 + 3 + 1.5 m,
+    // the slopes in the profile's plane, which is the plan's), drawn LINE_WIDTH_M wide with
+    // square ends.
     assert_eq!(
         site_items,
         [
@@ -167,14 +169,23 @@ fn alignments_match_ifcopenshell() {
             "surface cross slopes",
             "surface cross horizontal",
             "surface open profile",
+            "surface cross extruded",
             "offset course",
             "offset course widening"
         ]
     );
+    let extruded = &plans[0].items[4];
+    let w = poinav_geom::section_lines::LINE_WIDTH_M;
+    let want = (6.5 + w) * w;
+    assert!(
+        (extruded.area() - want).abs() < w * w,
+        "{} {want}",
+        extruded.area()
+    );
     assert_eq!(
         summary,
         [
-            ("Site".to_string(), 6),
+            ("Site".to_string(), 7),
             ("West".to_string(), 4),
             ("East".to_string(), 3)
         ]

@@ -6,7 +6,9 @@
 //!
 //! Cell `(col, row)` covers `origin + [col, col + 1) x [row, row + 1)` cells of `resolution_m`;
 //! row 0 is the lowest y. A cell belongs to a polygon when its centre is inside it (even-odd
-//! rule), so axis-aligned edges on cell boundaries are rasterised without error.
+//! rule), so axis-aligned edges on cell boundaries are rasterised without error; an obstacle's
+//! parts thinner than a cell, which may hold no centre, also occupy every cell their boundary
+//! touches ([`crate::thin_cells`]), so no route crosses a glass panel or a fence.
 
 use std::time::Instant;
 
@@ -20,6 +22,7 @@ use crate::door_frame::DoorFrame;
 use crate::door_status::door_status;
 use crate::floor::{Floor, ObstacleKind};
 use crate::polygon::{self, PassageFrame};
+use crate::thin_cells::{Frame, ThinCells};
 use crate::zone_index::ZoneIndex;
 use crate::NavError;
 use crate::Ring;
@@ -197,6 +200,24 @@ fn paint(
     ring: &[DVec2],
     mut f: impl FnMut(usize),
 ) {
+    spans(width, height, origin, res, ring, |row, c0, c1| {
+        let base = row * width;
+        for col in c0..c1 {
+            f(base + col);
+        }
+    });
+}
+
+/// The cells whose centre is inside `ring` (even-odd), as runs: `f(row, c0, c1)` for columns
+/// `c0..c1` of `row`, rows upwards.
+pub(crate) fn spans(
+    width: usize,
+    height: usize,
+    origin: DVec2,
+    res: f64,
+    ring: &[DVec2],
+    mut f: impl FnMut(usize, usize, usize),
+) {
     let Some((lo, hi)) = polygon::bounds(ring) else {
         return;
     };
@@ -222,10 +243,7 @@ fn paint(
             if c1 <= c0 {
                 continue;
             }
-            let base = row * width;
-            for col in c0 as usize..c1 as usize {
-                f(base + col);
-            }
+            f(row, c0 as usize, c1 as usize);
         }
     }
 }
@@ -399,6 +417,15 @@ impl OccupancyGrid {
             .map(|z| past(std::slice::from_ref(&z.ring)))
             .collect();
         let door_sides = bounds::door_side_bounds(floor, limits);
+        // Obstacles are painted with their parts thinner than a cell ([`ThinCells`]), but
+        // around door passages.
+        let frame = Frame {
+            width,
+            height,
+            origin,
+            res,
+        };
+        let mut thin = ThinCells::around_doors(frame, floor.doors.iter().map(|d| &d.ring[..]));
 
         for (k, z) in floor.zones.iter().enumerate().rev() {
             if zone_past[k].is_some() {
@@ -423,7 +450,7 @@ impl OccupancyGrid {
                     continue;
                 }
                 for ring in &o.rings {
-                    paint(width, height, origin, res, ring, |i| barrier[i] = true);
+                    thin.paint(frame, ring, |i| barrier[i] = true);
                 }
             }
             for (d, sides) in floor.doors.iter().zip(&door_sides) {
@@ -531,7 +558,7 @@ impl OccupancyGrid {
                 state
             };
             for ring in rings {
-                paint(width, height, origin, res, ring, |i| {
+                thin.paint(frame, ring, |i| {
                     // Unknown furniture (or element) does not erase walls under it.
                     if state == CellState::Occupied || cells[i] != CellState::Occupied {
                         cells[i] = state;

@@ -6,7 +6,8 @@
 //!   [`Building`] is storeys plus stairs, ramps and lifts; door and connection statuses for any
 //!   profile.
 //! - [`grid`]: rasterising a storey ([`OccupancyGrid`]) and inflating it for a robot
-//!   ([`NavGrid`]).
+//!   ([`NavGrid`]); obstacle parts thinner than a cell occupy every cell they touch
+//!   ([`thin_cells`]), but around doors.
 //! - [`graph`]: the [`Topology`] of zones, doors and landings.
 //! - [`bounds`]: the size bounds of rasterising and the graph; elements past one are unknown
 //!   in the grid, never free, and named ([`GaveUp`]).
@@ -82,6 +83,7 @@ pub mod route_graph;
 pub mod space_name;
 pub mod speed;
 pub mod svg;
+pub mod thin_cells;
 pub mod zone_index;
 
 pub use audit::{audit, AuditOptions, AuditReport};
