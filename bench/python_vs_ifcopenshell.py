@@ -18,9 +18,9 @@ IfcOpenShell, apart (its large heap, given back, made whoever ran next pay for f
                        parallel as the wheel does, giving the same owned values (names and
                        texts as Strings) that the wheel hands to Python, then freed
            once        the Rust part of poinav.open(FILE).psets() (_native.bench_psets with
-                       once=True): Model::open and each distinct property set read once (the
-                       wheel's psets::AllSets), then freed; poinav / once - 1 is what making
-                       the Python objects costs
+                       once=True): Model::open and each distinct property set read once, in
+                       the wheel's chunks (pset_chunks::Chunks), then freed; poinav / once - 1
+                       is what making the Python objects costs
            ifcos       ifcopenshell.open(FILE) + ifcopenshell.util.element.get_psets for every
                        IfcProduct (psets_only)
   meshes   poinav      poinav.open(FILE).meshes(): every element's (n, 3) float64 vertices and
@@ -37,8 +37,8 @@ issue asks for at most 10 %), the same from the best (least disturbed) times, an
 CPU time (user + sys of all the process's threads, `time.process_time`, which other programs on
 a shared machine disturb much less than the wall time); for psets also poinav against "once"
 (the Python objects' cost alone); the load average before and after.
-The Rust calls run on all cores (rayon) and the Python objects are made on one thread, so on an
-idle machine the wall time's overhead is up to twice the CPU time's.
+The Rust calls run on all cores (rayon); psets() makes its Python objects on the calling
+thread while the pool reads (each chunk of products converted as soon as it is read).
 
 --instructions also counts the instructions of one call of each (valgrind's callgrind, one
 rayon thread; the difference of 3 calls and 1 call in fresh processes): a figure the machine's
