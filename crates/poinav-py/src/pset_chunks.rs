@@ -48,12 +48,13 @@ pub struct SetRef {
 }
 
 /// The smallest chunk (but for a model with fewer products).
-const MIN_CHUNK: usize = 32;
+const MIN_CHUNK: usize = 16;
 
 /// Where the chunks of `n` products end: each chunk half of the products left (the last
-/// fewer than twice `MIN_CHUNK`), so the first is read while the caller waits anyway, and what the caller
-/// converts after the last one is read (one core then idle) is a small part. Every chunk costs
-/// two hand-offs to the pool's threads: a few of them (6 for office-a's 1,090 products).
+/// fewer than twice `MIN_CHUNK`), so the first is read while the caller waits anyway, and
+/// what the caller converts after the last one is read (one core then idle) is a small part.
+/// Every chunk costs two hand-offs to the pool's threads: a few of them (3 for fzk-haus's
+/// 127 products, 7 for office-a's 1,090).
 fn chunk_ends(n: usize) -> Vec<usize> {
     let mut ends = Vec::new();
     let mut start = 0;
@@ -211,12 +212,12 @@ mod tests {
     use super::chunk_ends;
 
     #[test]
-    fn chunks_halve_down_to_32_to_63_products() {
+    fn chunks_halve_down_to_16_to_31_products() {
         assert_eq!(chunk_ends(0), Vec::<usize>::new());
         assert_eq!(chunk_ends(20), [20]);
-        assert_eq!(chunk_ends(64), [32, 64]);
-        assert_eq!(chunk_ends(127), [64, 127]);
-        assert_eq!(chunk_ends(295), [148, 222, 259, 295]);
-        assert_eq!(chunk_ends(1090), [545, 818, 954, 1022, 1056, 1090]);
+        assert_eq!(chunk_ends(32), [16, 32]);
+        assert_eq!(chunk_ends(127), [64, 96, 127]);
+        assert_eq!(chunk_ends(295), [148, 222, 259, 277, 295]);
+        assert_eq!(chunk_ends(1090), [545, 818, 954, 1022, 1056, 1073, 1090]);
     }
 }

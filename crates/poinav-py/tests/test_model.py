@@ -102,7 +102,7 @@ def test_psets_shared_by_products_are_separate_dicts():
 
 def test_psets_called_from_threads_at_once():
     # psets() reads on the shared rayon pool while each calling thread makes its dicts from
-    # the chunks read so far (duplex: 295 products in chunks of 148, 74, 37 and 36, sets
+    # the chunks read so far (duplex: 295 products in chunks of 148, 74, 37, 18 and 18, sets
     # shared across chunks); five callers at once must each get the whole, same result.
     model = poinav.open(CORPUS / "duplex-apartment.ifc")
     want = model.psets()
