@@ -10,34 +10,44 @@ use poinav_ifc::{Entity, EntityId};
 use rayon::prelude::*;
 use rustc_hash::FxHashMap;
 
-/// The products of one class in chunks, and each chunk's sets once it is read.
+/// The products of one class in chunks: which sets each has (found before any is read), and
+/// each chunk's sets once they are read.
 #[derive(Debug)]
 pub struct Chunks<'m> {
-    /// Every instance of the class (subtypes included), in the model's order.
-    products: Vec<Entity<'m>>,
-    /// Where each chunk ends in `products`.
-    ends: Vec<usize>,
-    /// Chunk `k`'s sets, set when it is read.
+    /// Per chunk: its products with a GlobalId, in the model's order.
+    products: Vec<Vec<Product>>,
+    /// Per chunk: the entities of `products`, and the sets first seen in it.
+    plan: Vec<(Vec<Entity<'m>>, Vec<Entity<'m>>)>,
+    /// Per chunk: its sets, set when read.
     read: Vec<OnceLock<Chunk>>,
 }
 
-/// One chunk of products, read.
+/// One product with a GlobalId.
+#[derive(Debug)]
+pub struct Product {
+    /// Its GlobalId.
+    pub global_id: String,
+    /// Its sets in `property_sets`'s order, each read once (`Chunks::set`).
+    sets: Vec<SetRef>,
+}
+
+/// One chunk's sets, read.
 #[derive(Debug, Default)]
 pub struct Chunk {
     /// The sets first seen in this chunk (in the order of first use), each read once.
-    pub sets: Vec<PropertySet>,
-    /// The chunk's products with a GlobalId: the GlobalId and the product's sets.
-    pub products: Vec<(String, ProductSets)>,
+    sets: Vec<PropertySet>,
+    /// By position in the chunk: the sets of a product where a type's set and the product's
+    /// own share a name, so that `property_sets` merges them (rare), read for it alone.
+    merged: FxHashMap<usize, Vec<PropertySet>>,
 }
 
 /// One product's property sets.
 #[derive(Debug)]
-pub enum ProductSets {
+pub enum ProductSets<'c> {
     /// Sets read once (`Chunks::set`), in the product's order (`property_sets`'s).
-    Read(Vec<SetRef>),
-    /// Sets of this product alone: a type's set and the product's own share a name, so
-    /// `property_sets` merges them (rare).
-    Merged(Vec<PropertySet>),
+    Read(&'c [SetRef]),
+    /// Sets of this product alone, merged.
+    Merged(&'c [PropertySet]),
 }
 
 /// Where a set read once is: chunk and position in its `Chunk::sets`.
@@ -71,14 +81,52 @@ fn chunk_ends(n: usize) -> Vec<usize> {
 }
 
 impl<'m> Chunks<'m> {
-    /// The instances of `class` (subtypes included), none read yet.
+    /// The instances of `class` (subtypes included) in chunks, with the sets each has (in
+    /// parallel); none read yet.
     pub fn new(model: &'m poinav_ifc::Model, class: &str) -> Self {
-        let products = model.instances_of(class);
-        let ends = chunk_ends(products.len());
-        let read = ends.iter().map(|_| OnceLock::new()).collect();
+        let all = model.instances_of(class);
+        let defs: Vec<Option<(String, Vec<Entity<'m>>)>> = all
+            .par_iter()
+            .map(|e| {
+                let g = e.global_id()?;
+                Some((g, set_definitions(*e).map(|(d, _)| d).collect()))
+            })
+            .collect();
+        // Each product's sets as references to the distinct ones, numbered in the order of
+        // first use, chunk by chunk.
+        let mut seen: FxHashMap<EntityId, SetRef> = FxHashMap::default();
+        let mut products = Vec::new();
+        let mut plan = Vec::new();
+        let mut start = 0;
+        let mut defs = defs.into_iter();
+        for (k, end) in chunk_ends(all.len()).into_iter().enumerate() {
+            let chunk = u32::try_from(k).expect("fewer than 2^32 chunks");
+            let mut fresh: Vec<Entity<'m>> = Vec::new();
+            let mut entities = Vec::new();
+            let mut these = Vec::new();
+            for (e, d) in all[start..end].iter().zip(defs.by_ref()) {
+                let Some((global_id, d)) = d else { continue };
+                let sets = d
+                    .into_iter()
+                    .map(|d| {
+                        *seen.entry(d.id()).or_insert_with(|| {
+                            fresh.push(d);
+                            let index = u32::try_from(fresh.len() - 1).expect("< 2^32 sets");
+                            SetRef { chunk, index }
+                        })
+                    })
+                    .collect();
+                entities.push(*e);
+                these.push(Product { global_id, sets });
+            }
+            products.push(these);
+            plan.push((entities, fresh));
+            start = end;
+        }
+        let read = plan.iter().map(|_| OnceLock::new()).collect();
         Chunks {
             products,
-            ends,
+            plan,
             read,
         }
     }
@@ -88,9 +136,16 @@ impl<'m> Chunks<'m> {
         self.read.len()
     }
 
-    /// Chunk `k`, once read.
-    pub fn chunk(&self, k: usize) -> Option<&Chunk> {
-        self.read.get(k).and_then(OnceLock::get)
+    /// The products of chunk `k` with their sets, once it is read.
+    pub fn products(&self, k: usize) -> Option<impl Iterator<Item = (&str, ProductSets<'_>)>> {
+        let chunk = self.read.get(k)?.get()?;
+        Some(self.products[k].iter().enumerate().map(|(i, p)| {
+            let sets = match chunk.merged.get(&i) {
+                Some(merged) => ProductSets::Merged(merged),
+                None => ProductSets::Read(&p.sets),
+            };
+            (p.global_id.as_str(), sets)
+        }))
     }
 
     /// The set at `r` (of a chunk already read).
@@ -110,95 +165,56 @@ impl<'m> Chunks<'m> {
     /// type gets) would otherwise be read, decoded and freed again for every product: 39 %
     /// of office-a's 8,494 sets are repeats.
     pub fn read_all(&self, mut done: impl FnMut(usize) -> bool) {
-        let mut seen: FxHashMap<EntityId, SetRef> = FxHashMap::default();
-        let mut start = 0;
-        for (k, &end) in self.ends.iter().enumerate() {
-            self.read_chunk(k, &self.products[start..end], &mut seen);
-            start = end;
+        for k in 0..self.len() {
+            self.read_chunk(k);
             if !done(k) {
                 return;
             }
         }
     }
 
-    /// Reads chunk `k` (`products`), after the chunks before it.
-    fn read_chunk(
-        &self,
-        k: usize,
-        products: &[Entity<'m>],
-        seen: &mut FxHashMap<EntityId, SetRef>,
-    ) {
-        let defs: Vec<(Entity<'m>, String, Vec<Entity<'m>>)> = products
-            .par_iter()
-            .filter_map(|e| {
-                let g = e.global_id()?;
-                Some((*e, g, set_definitions(*e).map(|(d, _)| d).collect()))
-            })
-            .collect();
-        // Each product's sets as references to the distinct ones; those first seen here are
-        // read in this chunk.
-        let mut fresh: Vec<Entity<'m>> = Vec::new();
-        let chunk = u32::try_from(k).expect("fewer than 2^32 chunks");
-        let defs: Vec<(Entity<'m>, String, Vec<SetRef>)> = defs
-            .into_iter()
-            .map(|(e, g, d)| {
-                let refs = d
-                    .into_iter()
-                    .map(|d| {
-                        *seen.entry(d.id()).or_insert_with(|| {
-                            fresh.push(d);
-                            SetRef {
-                                chunk,
-                                index: u32::try_from(fresh.len() - 1).expect("< 2^32 sets"),
-                            }
-                        })
-                    })
-                    .collect();
-                (e, g, refs)
-            })
-            .collect();
+    /// Reads chunk `k`, after the chunks before it.
+    fn read_chunk(&self, k: usize) {
+        let (entities, fresh) = &self.plan[k];
         let sets: Vec<PropertySet> = fresh
             .par_iter()
             .map(|d| read_set_untyped(*d, false))
             .collect();
         let name = |r: &SetRef| -> &str {
-            if r.chunk == chunk {
+            if r.chunk as usize == k {
                 &sets[r.index as usize].name
             } else {
                 &self.set(*r).name
             }
         };
         // Comparing names is little work: on this thread; merged sets are rare.
-        let products = defs
-            .into_iter()
-            .map(|(e, g, d)| {
-                let names_differ = d
-                    .iter()
+        let merged = self.products[k]
+            .iter()
+            .zip(entities)
+            .enumerate()
+            .filter(|(_, (p, _))| {
+                let d = &p.sets;
+                !d.iter()
                     .enumerate()
-                    .all(|(i, a)| d[..i].iter().all(|b| name(a) != name(b)));
-                let sets = if names_differ {
-                    ProductSets::Read(d)
-                } else {
-                    ProductSets::Merged(property_sets(e))
-                };
-                (g, sets)
+                    .all(|(i, a)| d[..i].iter().all(|b| name(a) != name(b)))
             })
+            .map(|(i, (_, e))| (i, property_sets(*e)))
             .collect();
         self.read[k]
-            .set(Chunk { sets, products })
+            .set(Chunk { sets, merged })
             .expect("each chunk read once");
     }
 
-    /// The chunks read, without the borrowed products (to free them elsewhere).
-    pub fn into_read(self) -> Vec<OnceLock<Chunk>> {
-        self.read
+    /// What the chunks own, without the borrowed entities (to free it elsewhere).
+    pub fn into_owned(self) -> (Vec<Vec<Product>>, Vec<OnceLock<Chunk>>) {
+        (self.products, self.read)
     }
 
     /// The number of property sets of all products read so far.
     pub fn set_count(&self) -> usize {
         (0..self.len())
-            .filter_map(|k| self.chunk(k))
-            .flat_map(|c| &c.products)
+            .filter_map(|k| self.products(k))
+            .flatten()
             .map(|(_, s)| match s {
                 ProductSets::Read(sets) => sets.len(),
                 ProductSets::Merged(sets) => sets.len(),
