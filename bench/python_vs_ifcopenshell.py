@@ -33,7 +33,9 @@ IfcOpenShell, apart (its large heap, given back, made whoever ran next pay for f
            cli         `PATH inspect FILE --json` as a subprocess, output discarded
 
 Printed per file: the median wall time of each, "wheel" = median poinav / median rust - 1 (the
-issue asks for at most 10 %), the same from the best (least disturbed) times, and from the
+issue asks for at most 10 %), the same from the best (least disturbed) times, the median of
+each round's own ratio ("pairs": the two ran back to back, so a load that changes between
+rounds moves both alike), and from the
 CPU time (user + sys of all the process's threads, `time.process_time`, which other programs on
 a shared machine disturb much less than the wall time); for psets also poinav against "once"
 (the Python objects' cost alone); the load average before and after.
@@ -191,6 +193,12 @@ def pct(a, b):
     return 100 * (a / b - 1)
 
 
+def paired(times, a, b):
+    """The median of the rounds' own ratios a / b - 1 (in %): the two ran one after the
+    other in each round, so a load that changes between rounds moves both alike."""
+    return 100 * (statistics.median(x / y for x, y in zip(times[a], times[b])) - 1)
+
+
 def main():
     if len(sys.argv) > 1 and sys.argv[1] == "--one":
         kind, who, n, path = sys.argv[2:6]
@@ -226,12 +234,14 @@ def main():
         cpu = {k: statistics.median(v) for k, v in cpus.items()}
         size = path.stat().st_size / 1e6
         print(f"\n{path.name} ({size:.2f} MB), load average {load}")
-        print(f"  {'':7} {'poinav s':>9} {'rust s':>8} {'wheel':>7} {'(best)':>7} {'CPU poinav':>11} "
-              f"{'CPU rust':>9} {'wheel':>7}" + ("" if args.no_ifcos else f" {'ifcos s':>8} {'vs ifcos':>9}"))
+        print(f"  {'':7} {'poinav s':>9} {'rust s':>8} {'wheel':>7} {'(best)':>7} {'(pairs)':>7} "
+              f"{'CPU poinav':>11} {'CPU rust':>9} {'wheel':>7}"
+              + ("" if args.no_ifcos else f" {'ifcos s':>8} {'vs ifcos':>9}"))
         for kind in kinds:
             p, r = (kind, "poinav"), (kind, "rust")
             line = (f"  {kind:7} {med[p]:9.4f} {med[r]:8.4f} {pct(med[p], med[r]):+6.1f}% "
-                    f"{pct(best[p], best[r]):+6.1f}% {cpu[p]:11.4f} {cpu[r]:9.4f} {pct(cpu[p], cpu[r]):+6.1f}%")
+                    f"{pct(best[p], best[r]):+6.1f}% {paired(times, p, r):+6.1f}% "
+                    f"{cpu[p]:11.4f} {cpu[r]:9.4f} {pct(cpu[p], cpu[r]):+6.1f}%")
             if not args.no_ifcos:
                 i = (kind, "ifcos")
                 line += f" {med[i]:8.4f} {med[i] / med[p]:8.1f}x"
@@ -239,7 +249,8 @@ def main():
             o = (kind, "once")
             if o in med:
                 print(f"  {'':7} {'once s':>9} {med[o]:8.4f} {pct(med[p], med[o]):+6.1f}% "
-                      f"{pct(best[p], best[o]):+6.1f}% {'CPU once':>11} {cpu[o]:9.4f} "
+                      f"{pct(best[p], best[o]):+6.1f}% {paired(times, p, o):+6.1f}% "
+                      f"{'CPU once':>11} {cpu[o]:9.4f} "
                       f"{pct(cpu[p], cpu[o]):+6.1f}%   (poinav against its own Rust part)")
         if args.instructions:
             for kind in kinds:
