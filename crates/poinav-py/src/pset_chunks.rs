@@ -26,7 +26,7 @@ pub struct Chunks<'m> {
 #[derive(Debug)]
 pub struct Product {
     /// Its GlobalId.
-    pub global_id: String,
+    global_id: String,
     /// Its sets in `property_sets`'s order, each read once (`Chunks::set`).
     sets: Vec<SetRef>,
 }
@@ -63,8 +63,8 @@ const MIN_CHUNK: usize = 16;
 /// Where the chunks of `n` products end: each chunk half of the products left (the last
 /// fewer than twice `MIN_CHUNK`), so the first is read while the caller waits anyway, and
 /// what the caller converts after the last one is read (one core then idle) is a small part.
-/// Every chunk costs two hand-offs to the pool's threads: a few of them (3 for fzk-haus's
-/// 127 products, 7 for office-a's 1,090).
+/// Every chunk costs a parallel pass (a hand-off between the pool's threads) and a hand-off
+/// to the caller: a few of them (3 for fzk-haus's 127 products, 7 for office-a's 1,090).
 fn chunk_ends(n: usize) -> Vec<usize> {
     let mut ends = Vec::new();
     let mut start = 0;
