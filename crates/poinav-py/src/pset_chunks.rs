@@ -10,14 +10,18 @@ use poinav_ifc::{Entity, EntityId};
 use rayon::prelude::*;
 use rustc_hash::FxHashMap;
 
-/// The products of one class in chunks: which sets each has (found before any is read), and
-/// each chunk's sets once they are read.
+/// The products of one class in chunks: which sets each has (found before any is read, by
+/// `read_all`), and each chunk's sets once they are read.
 #[derive(Debug)]
 pub struct Chunks<'m> {
-    /// Per chunk: its products with a GlobalId, in the model's order.
-    products: Vec<Vec<Product>>,
-    /// Per chunk: the entities of `products`, and the sets first seen in it.
-    plan: Vec<(Vec<Entity<'m>>, Vec<Entity<'m>>)>,
+    /// Every instance of the class (subtypes included), in the model's order.
+    all: Vec<Entity<'m>>,
+    /// Where each chunk ends in `all`.
+    ends: Vec<usize>,
+    /// Per chunk: its products with a GlobalId, in the model's order (set by `find`).
+    products: OnceLock<Vec<Vec<Product>>>,
+    /// Per chunk: the entities of `products`, and the sets first seen in it (set by `find`).
+    plan: OnceLock<Vec<(Vec<Entity<'m>>, Vec<Entity<'m>>)>>,
     /// Per chunk: its sets, set when read.
     read: Vec<OnceLock<Chunk>>,
 }
@@ -81,30 +85,42 @@ fn chunk_ends(n: usize) -> Vec<usize> {
 }
 
 impl<'m> Chunks<'m> {
-    /// The instances of `class` (subtypes included) in chunks, with the sets each has (in
-    /// parallel); none read yet.
+    /// The instances of `class` (subtypes included) in chunks; nothing read yet.
     pub fn new(model: &'m poinav_ifc::Model, class: &str) -> Self {
         let all = model.instances_of(class);
-        let defs: Vec<Option<(String, Vec<Entity<'m>>)>> = all
+        let ends = chunk_ends(all.len());
+        let read = ends.iter().map(|_| OnceLock::new()).collect();
+        Chunks {
+            all,
+            ends,
+            products: OnceLock::new(),
+            plan: OnceLock::new(),
+            read,
+        }
+    }
+
+    /// Finds the sets of every product (in parallel), numbered in the order of first use,
+    /// chunk by chunk: what `read_all` does first, on the pool as the rest.
+    fn find(&self) {
+        let defs: Vec<Option<(String, Vec<Entity<'m>>)>> = self
+            .all
             .par_iter()
             .map(|e| {
                 let g = e.global_id()?;
                 Some((g, set_definitions(*e).map(|(d, _)| d).collect()))
             })
             .collect();
-        // Each product's sets as references to the distinct ones, numbered in the order of
-        // first use, chunk by chunk.
         let mut seen: FxHashMap<EntityId, SetRef> = FxHashMap::default();
         let mut products = Vec::new();
         let mut plan = Vec::new();
         let mut start = 0;
         let mut defs = defs.into_iter();
-        for (k, end) in chunk_ends(all.len()).into_iter().enumerate() {
+        for (k, &end) in self.ends.iter().enumerate() {
             let chunk = u32::try_from(k).expect("fewer than 2^32 chunks");
             let mut fresh: Vec<Entity<'m>> = Vec::new();
             let mut entities = Vec::new();
             let mut these = Vec::new();
-            for (e, d) in all[start..end].iter().zip(defs.by_ref()) {
+            for (e, d) in self.all[start..end].iter().zip(defs.by_ref()) {
                 let Some((global_id, d)) = d else { continue };
                 let sets = d
                     .into_iter()
@@ -123,12 +139,8 @@ impl<'m> Chunks<'m> {
             plan.push((entities, fresh));
             start = end;
         }
-        let read = plan.iter().map(|_| OnceLock::new()).collect();
-        Chunks {
-            products,
-            plan,
-            read,
-        }
+        self.products.set(products).expect("found once");
+        self.plan.set(plan).expect("found once");
     }
 
     /// The number of chunks.
@@ -139,7 +151,8 @@ impl<'m> Chunks<'m> {
     /// The products of chunk `k` with their sets, once it is read.
     pub fn products(&self, k: usize) -> Option<impl Iterator<Item = (&str, ProductSets<'_>)>> {
         let chunk = self.read.get(k)?.get()?;
-        Some(self.products[k].iter().enumerate().map(|(i, p)| {
+        let products = &self.products.get()?[k];
+        Some(products.iter().enumerate().map(|(i, p)| {
             let sets = match chunk.merged.get(&i) {
                 Some(merged) => ProductSets::Merged(merged),
                 None => ProductSets::Read(&p.sets),
@@ -165,6 +178,9 @@ impl<'m> Chunks<'m> {
     /// type gets) would otherwise be read, decoded and freed again for every product: 39 %
     /// of office-a's 8,494 sets are repeats.
     pub fn read_all(&self, mut done: impl FnMut(usize) -> bool) {
+        if self.len() > 0 {
+            self.find();
+        }
         for k in 0..self.len() {
             self.read_chunk(k);
             if !done(k) {
@@ -175,7 +191,7 @@ impl<'m> Chunks<'m> {
 
     /// Reads chunk `k`, after the chunks before it.
     fn read_chunk(&self, k: usize) {
-        let (entities, fresh) = &self.plan[k];
+        let (entities, fresh) = &self.plan.get().expect("found before")[k];
         let sets: Vec<PropertySet> = fresh
             .par_iter()
             .map(|d| read_set_untyped(*d, false))
@@ -188,7 +204,7 @@ impl<'m> Chunks<'m> {
             }
         };
         // Comparing names is little work: on this thread; merged sets are rare.
-        let merged = self.products[k]
+        let merged = self.products.get().expect("found before")[k]
             .iter()
             .zip(entities)
             .enumerate()
@@ -206,8 +222,8 @@ impl<'m> Chunks<'m> {
     }
 
     /// What the chunks own, without the borrowed entities (to free it elsewhere).
-    pub fn into_owned(self) -> (Vec<Vec<Product>>, Vec<OnceLock<Chunk>>) {
-        (self.products, self.read)
+    pub fn into_owned(self) -> (Option<Vec<Vec<Product>>>, Vec<OnceLock<Chunk>>) {
+        (self.products.into_inner(), self.read)
     }
 
     /// The number of property sets of all products read so far.
