@@ -18,9 +18,9 @@ IfcOpenShell, apart (its large heap, given back, made whoever ran next pay for f
                        parallel as the wheel does, giving the same owned values (names and
                        texts as Strings) that the wheel hands to Python, then freed
            once        the Rust part of poinav.open(FILE).psets() (_native.bench_psets with
-                       once=True): Model::open and each distinct property set read once (the
-                       wheel's psets::AllSets), then freed; poinav / once - 1 is what making
-                       the Python objects costs
+                       once=True): Model::open and each distinct property set read once, in
+                       the wheel's chunks (pset_chunks::Chunks), then freed; poinav / once - 1
+                       is what making the Python objects costs
            ifcos       ifcopenshell.open(FILE) + ifcopenshell.util.element.get_psets for every
                        IfcProduct (psets_only)
   meshes   poinav      poinav.open(FILE).meshes(): every element's (n, 3) float64 vertices and
@@ -33,12 +33,14 @@ IfcOpenShell, apart (its large heap, given back, made whoever ran next pay for f
            cli         `PATH inspect FILE --json` as a subprocess, output discarded
 
 Printed per file: the median wall time of each, "wheel" = median poinav / median rust - 1 (the
-issue asks for at most 10 %), the same from the best (least disturbed) times, and from the
+issue asks for at most 10 %), the same from the best (least disturbed) times, the median of
+each round's own ratio ("pairs": the two ran back to back, so a load that changes between
+rounds moves both alike), and from the
 CPU time (user + sys of all the process's threads, `time.process_time`, which other programs on
 a shared machine disturb much less than the wall time); for psets also poinav against "once"
 (the Python objects' cost alone); the load average before and after.
-The Rust calls run on all cores (rayon) and the Python objects are made on one thread, so on an
-idle machine the wall time's overhead is up to twice the CPU time's.
+The Rust calls run on all cores (rayon); psets() makes its Python objects on the calling
+thread while the pool reads (each chunk of products converted as soon as it is read).
 
 --instructions also counts the instructions of one call of each (valgrind's callgrind, one
 rayon thread; the difference of 3 calls and 1 call in fresh processes): a figure the machine's
@@ -191,6 +193,12 @@ def pct(a, b):
     return 100 * (a / b - 1)
 
 
+def paired(times, a, b):
+    """The median of the rounds' own ratios a / b - 1 (in %): the two ran one after the
+    other in each round, so a load that changes between rounds moves both alike."""
+    return 100 * (statistics.median(x / y for x, y in zip(times[a], times[b])) - 1)
+
+
 def main():
     if len(sys.argv) > 1 and sys.argv[1] == "--one":
         kind, who, n, path = sys.argv[2:6]
@@ -226,12 +234,14 @@ def main():
         cpu = {k: statistics.median(v) for k, v in cpus.items()}
         size = path.stat().st_size / 1e6
         print(f"\n{path.name} ({size:.2f} MB), load average {load}")
-        print(f"  {'':7} {'poinav s':>9} {'rust s':>8} {'wheel':>7} {'(best)':>7} {'CPU poinav':>11} "
-              f"{'CPU rust':>9} {'wheel':>7}" + ("" if args.no_ifcos else f" {'ifcos s':>8} {'vs ifcos':>9}"))
+        print(f"  {'':7} {'poinav s':>9} {'rust s':>8} {'wheel':>7} {'(best)':>7} {'(pairs)':>7} "
+              f"{'CPU poinav':>11} {'CPU rust':>9} {'wheel':>7}"
+              + ("" if args.no_ifcos else f" {'ifcos s':>8} {'vs ifcos':>9}"))
         for kind in kinds:
             p, r = (kind, "poinav"), (kind, "rust")
             line = (f"  {kind:7} {med[p]:9.4f} {med[r]:8.4f} {pct(med[p], med[r]):+6.1f}% "
-                    f"{pct(best[p], best[r]):+6.1f}% {cpu[p]:11.4f} {cpu[r]:9.4f} {pct(cpu[p], cpu[r]):+6.1f}%")
+                    f"{pct(best[p], best[r]):+6.1f}% {paired(times, p, r):+6.1f}% "
+                    f"{cpu[p]:11.4f} {cpu[r]:9.4f} {pct(cpu[p], cpu[r]):+6.1f}%")
             if not args.no_ifcos:
                 i = (kind, "ifcos")
                 line += f" {med[i]:8.4f} {med[i] / med[p]:8.1f}x"
@@ -239,7 +249,8 @@ def main():
             o = (kind, "once")
             if o in med:
                 print(f"  {'':7} {'once s':>9} {med[o]:8.4f} {pct(med[p], med[o]):+6.1f}% "
-                      f"{pct(best[p], best[o]):+6.1f}% {'CPU once':>11} {cpu[o]:9.4f} "
+                      f"{pct(best[p], best[o]):+6.1f}% {paired(times, p, o):+6.1f}% "
+                      f"{'CPU once':>11} {cpu[o]:9.4f} "
                       f"{pct(cpu[p], cpu[o]):+6.1f}%   (poinav against its own Rust part)")
         if args.instructions:
             for kind in kinds:

@@ -12,6 +12,7 @@ mod inspect;
 mod model;
 mod navigators;
 mod profile;
+mod pset_chunks;
 mod psets;
 mod simulate;
 

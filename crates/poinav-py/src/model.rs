@@ -85,8 +85,8 @@ fn all_sets(model: &poinav_ifc::Model, class: &str) -> Vec<(String, Vec<Property
 /// Benchmark helper: reads `path` and every product's property sets in Rust only (no
 /// Python objects); returns the number of property sets. What the wheel adds is the
 /// difference to `open(path).psets()`. By default as the library gives them to a Rust caller
-/// (`property_sets` of each product); `once=True`: as the wheel reads them before making
-/// Python objects (each distinct set once, `psets::AllSets`).
+/// (`property_sets` of each product); `once=True`: as `Model.psets` reads them for its
+/// Python objects (each distinct set once, in the same chunks: `pset_chunks::Chunks`).
 #[pyfunction]
 #[pyo3(signature = (path, once = false))]
 pub fn bench_psets(py: Python<'_>, path: PathBuf, once: bool) -> PyResult<usize> {
@@ -95,7 +95,9 @@ pub fn bench_psets(py: Python<'_>, path: PathBuf, once: bool) -> PyResult<usize>
         .map_err(|e| ifc_error(py, &e))?;
     Ok(py.detach(|| {
         if once {
-            crate::psets::AllSets::read(&model, "IfcProduct").set_count()
+            let chunks = crate::pset_chunks::Chunks::new(&model, "IfcProduct");
+            chunks.read_all(|_| true);
+            chunks.set_count()
         } else {
             all_sets(&model, "IfcProduct")
                 .iter()
@@ -184,11 +186,7 @@ impl Model {
     /// property name -> value (each set also has `id`, the set's `#id`).
     #[pyo3(signature = (cls = "IfcProduct"))]
     fn psets<'py>(&self, py: Python<'py>, cls: &str) -> PyResult<Bound<'py, PyDict>> {
-        let all = py.detach(|| crate::psets::AllSets::read(&self.inner, cls));
-        let out = crate::psets::psets(py, &all)?;
-        // Freeing the library's values needs no GIL.
-        py.detach(move || drop(all));
-        Ok(out)
+        crate::psets::psets(py, &self.inner, cls)
     }
 
     /// Element meshes in world metres (openings cut), in file order: dicts with `id`,

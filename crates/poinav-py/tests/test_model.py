@@ -2,6 +2,7 @@
 IfcOpenShell on the corpus."""
 
 import math
+from concurrent.futures import ThreadPoolExecutor
 
 import ifcopenshell
 import ifcopenshell.util.element
@@ -97,6 +98,20 @@ def test_psets_shared_by_products_are_separate_dicts():
     first, second = shared[0][:2]
     first["poinav-test"] = 1.0
     assert "poinav-test" not in second
+
+
+def test_psets_called_from_threads_at_once():
+    # psets() reads on the shared rayon pool while each calling thread makes its dicts from
+    # the chunks read so far (duplex: 295 products in chunks of 148, 74, 37, 18 and 18, sets
+    # shared across chunks); five callers at once must each get the whole, same result.
+    model = poinav.open(CORPUS / "duplex-apartment.ifc")
+    want = model.psets()
+    with ThreadPoolExecutor(5) as pool:
+        got = list(pool.map(model.psets, ["IfcProduct"] * 4 + ["IfcDoor"]))
+    assert len(want) == 295 and sum(len(s) for s in want.values()) == 2329
+    for g in got[:4]:
+        assert g == want and list(g) == list(want)
+    assert len(got[4]) == 14 and got[4] == {k: v for k, v in want.items() if k in got[4]}
 
 
 def test_open_from_bytes_and_ifcopenshell_file(fzk):
