@@ -31,7 +31,7 @@ pub fn ray_segment(o: DVec2, dir: DVec2, a: DVec2, b: DVec2) -> Option<f64> {
 }
 
 /// A robot's footprint: a rectangle centred on `c` with its long axis along unit vector `ax`.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Obb {
     /// Centre.
     pub c: DVec2,

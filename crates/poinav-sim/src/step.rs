@@ -131,7 +131,7 @@ impl Near {
 }
 
 /// One robot's move in a step, before it is committed.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, Default)]
 struct Move {
     pos: DVec2,
     heading: f64,
@@ -178,6 +178,12 @@ const REACH_MARGIN: f64 = 1e-6;
 struct Region {
     lo: DVec2,
     hi: DVec2,
+}
+
+impl Default for Region {
+    fn default() -> Region {
+        Region::EMPTY
+    }
 }
 
 impl Region {
@@ -442,7 +448,9 @@ pub struct Sim<'f> {
     perceived: Vec<Perceived>,
     /// Each robot's move of the step planned with its decision (against the boxes at the
     /// start of the step), before the moves are committed.
-    guesses: Vec<Option<(Move, Near)>>,
+    guesses: Vec<Move>,
+    /// The robots each of those moves looked at.
+    nears: Vec<Near>,
     /// Every move planned again at its commit (the plain sequential loop; tests compare it).
     sequential_moves: bool,
     /// Per robot: the heading (its bits) its ray directions were last computed for, and
@@ -584,6 +592,7 @@ impl<'f> Sim<'f> {
             perceptions: Vec::with_capacity(n),
             perceived: Vec::new(),
             guesses: Vec::with_capacity(n),
+            nears: Vec::with_capacity(n),
             sequential_moves: false,
             ray_dirs: vec![(None, [DVec2::ZERO; 5]); n],
         };
@@ -705,9 +714,12 @@ impl<'f> Sim<'f> {
             self.records.extend_from_slice(&self.current);
         }
         if advance {
-            let mut guesses = std::mem::take(&mut self.guesses);
-            self.commit_moves(guesses.iter_mut().filter_map(Option::take), &actions, t);
-            self.guesses = guesses;
+            let (mut guesses, nears) = (
+                std::mem::take(&mut self.guesses),
+                std::mem::take(&mut self.nears),
+            );
+            self.commit_moves(&mut guesses, &nears, &actions, t);
+            (self.guesses, self.nears) = (guesses, nears);
         }
         self.actions = actions;
         if !advance {
@@ -833,7 +845,8 @@ impl<'f> Sim<'f> {
         let (world, dt) = (&self.world, self.opts.dt);
         // Written in place: a record is about 350 bytes, a move about 200.
         self.current.resize_with(n, blank_record);
-        self.guesses.resize_with(n, || None);
+        self.guesses.resize_with(n, Move::default);
+        self.nears.resize(n, Near::Few(0, [0; 7]));
         self.ctrls
             .par_iter_mut()
             .zip(self.minds.par_iter_mut())
@@ -843,6 +856,7 @@ impl<'f> Sim<'f> {
             .zip(events.par_iter_mut())
             .zip(self.current.par_iter_mut())
             .zip(self.guesses.par_iter_mut())
+            .zip(self.nears.par_iter_mut())
             .enumerate()
             .with_min_len(8)
             .for_each_init(
@@ -850,7 +864,10 @@ impl<'f> Sim<'f> {
                 |sc,
                  (
                     i,
-                    (((((((ctrl, mind), robot), arrived), action_out), events), record), guess),
+                    (
+                        (((((((ctrl, mind), robot), arrived), action_out), events), record), guess),
+                        near,
+                    ),
                 )| {
                     let p = &perceptions[i];
                     let ctx = Ctx {
@@ -903,10 +920,10 @@ impl<'f> Sim<'f> {
                             });
                         }
                     }
-                    *guess = plan.then(|| {
-                        let m = plan_move(world, robot, i, action, dt, sc);
-                        (m, Near::of(&sc.robots))
-                    });
+                    if plan {
+                        *guess = plan_move(world, robot, i, action, dt, sc);
+                        *near = Near::of(&sc.robots);
+                    }
                     *record = StepRecord {
                         step,
                         robot: i as u32,
@@ -934,30 +951,26 @@ impl<'f> Sim<'f> {
     #[cfg(test)]
     fn move_all(&mut self, actions: &[Command], t: f64) {
         let this = &*self;
-        let guesses: Vec<(Move, Near)> = (0..actions.len())
+        let (mut guesses, nears): (Vec<Move>, Vec<Near>) = (0..actions.len())
             .into_par_iter()
             .with_min_len(8)
             .map_init(Scratch::default, |sc, i| {
                 let m = this.plan_move(i, actions[i], sc);
                 (m, Near::of(&sc.robots))
             })
-            .collect();
-        self.commit_moves(guesses.into_iter(), actions, t);
+            .unzip();
+        self.commit_moves(&mut guesses, &nears, actions, t);
     }
 
     /// Commits the moves `guesses` (each robot's, in index order, planned against the boxes at
     /// the start of the step, with the robots it looked at), redoing those whose neighbours
     /// moved where they looked.
-    fn commit_moves(
-        &mut self,
-        guesses: impl Iterator<Item = (Move, Near)>,
-        actions: &[Command],
-        t: f64,
-    ) {
+    fn commit_moves(&mut self, guesses: &mut [Move], nears: &[Near], actions: &[Command], t: f64) {
         // Per robot already moved in this step: its box's bounding box before the move.
         let mut moved: Vec<Option<(DVec2, DVec2)>> = vec![None; actions.len()];
         let mut sc = Scratch::default();
-        for (i, (guess, near)) in guesses.enumerate() {
+        for (i, (guess, near)) in guesses.iter_mut().zip(nears).enumerate() {
+            let mut redone;
             // Redone only when a neighbour that moved was, or now is, where the move looked.
             let redo = self.sequential_moves
                 || near.as_slice().iter().any(|&j| {
@@ -967,7 +980,8 @@ impl<'f> Sim<'f> {
                     })
                 });
             let m = if redo {
-                self.plan_move(i, actions[i], &mut sc)
+                redone = self.plan_move(i, actions[i], &mut sc);
+                &mut redone
             } else {
                 guess
             };
@@ -983,7 +997,8 @@ impl<'f> Sim<'f> {
         plan_move(&self.world, &self.robots[i], i, action, self.opts.dt, sc)
     }
 
-    fn commit_move(&mut self, i: usize, m: Move, t: f64) {
+    /// Places robot `i` where its move `m` ends (its contacts taken out of it).
+    fn commit_move(&mut self, i: usize, m: &mut Move, t: f64) {
         let r = &mut self.robots[i];
         r.state.pos = m.pos;
         r.state.heading = m.heading;
@@ -1013,7 +1028,8 @@ impl<'f> Sim<'f> {
                 });
             }
         }
-        self.touching[i] = m.touched;
+        // The touched list changes hands: the move's memory becomes the robot's contacts.
+        std::mem::swap(&mut self.touching[i], &mut m.touched);
     }
 
     /// The records of the last [`Sim::tick`], one per robot in index order (empty before the
