@@ -688,17 +688,18 @@ pub fn perceive(
         }
     });
 
-    // C-1.
+    // C-1: the tracked robots still in range, and the nearest of them (by distance, then
+    // index), each distance computed once.
+    let mut nearest: Option<(u32, f64)> = None;
     mind.tracked.retain(|&r| {
-        env.robots[r as usize].state.pos.distance(pos)
-            <= RANGE_M + env.world.robot_radius(r as usize)
+        let d = env.robots[r as usize].state.pos.distance(pos);
+        let keep = d <= RANGE_M + env.world.robot_radius(r as usize);
+        if keep && nearest.is_none_or(|(nr, nd)| d.total_cmp(&nd).then(r.cmp(&nr)).is_lt()) {
+            nearest = Some((r, d));
+        }
+        keep
     });
     mind.tracked.sort_unstable();
-    let nearest = mind
-        .tracked
-        .iter()
-        .map(|&r| (r, env.robots[r as usize].state.pos.distance(pos)))
-        .min_by(|a, b| a.1.total_cmp(&b.1).then(a.0.cmp(&b.0)));
     let mut c2 = false;
     let mut keep_right = false;
     let mut stop = false;

@@ -188,8 +188,11 @@ impl Rows {
         for &(c, _) in pairs {
             start[c as usize + 1] += 1;
         }
-        for c in 0..cells {
-            start[c + 1] += start[c];
+        // Running sums (an iterator: no bounds test per cell, the loop runs over every cell).
+        let mut sum = 0;
+        for v in start.iter_mut() {
+            sum += *v;
+            *v = sum;
         }
         next.clear();
         next.extend_from_slice(&start[..cells]);
