@@ -572,7 +572,7 @@ pub fn perceive(
     let mut left_ref = None;
     let mut right_ref = None;
     for (k, ray) in reading.rays.iter().enumerate() {
-        let angle = crate::sensor::RAY_DEG[k].to_radians();
+        let (sin, cos) = crate::sensor::ray_sin_cos()[k];
         let avoid = match ray.target {
             Target::None => false,
             Target::Robot(r) => {
@@ -603,9 +603,9 @@ pub fn perceive(
         }
         // MaintainClearance(E, margin).
         if k == FRONT || k == LEFT30 || k == RIGHT30 {
-            let lateral = (ray.dist * angle.sin()).abs();
+            let lateral = (ray.dist * sin).abs();
             if forward && lateral <= lim.half_width + lim.margin {
-                let free = ray.dist * angle.cos() - lim.half_length - lim.margin;
+                let free = ray.dist * cos - lim.half_length - lim.margin;
                 cap = cap.min((2.0 * brake * free.max(0.0)).sqrt());
             }
         } else {

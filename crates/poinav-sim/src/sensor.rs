@@ -20,6 +20,14 @@ pub const LEFT: usize = 3;
 /// Index of the -90 degree ray (right).
 pub const RIGHT: usize = 4;
 
+/// Sine and cosine of each ray's angle from the heading, in [`RAY_DEG`] order (computed once,
+/// the same bits as computing them where they are used).
+pub fn ray_sin_cos() -> &'static [(f64, f64); 5] {
+    static SIN_COS: std::sync::LazyLock<[(f64, f64); 5]> =
+        std::sync::LazyLock::new(|| RAY_DEG.map(|d| (d.to_radians().sin(), d.to_radians().cos())));
+    &SIN_COS
+}
+
 /// The paper's sensor range, metres.
 pub const RANGE_M: f64 = 5.0;
 
