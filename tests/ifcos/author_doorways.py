@@ -28,19 +28,7 @@ a = Authoring(f, "poinav-doorways:")
 gid, pt, d3, axis, place = a.gid, a.pt, a.d3, a.axis, a.place
 
 
-ctx = f.createIfcGeometricRepresentationContext(None, "Model", 3, 1.0e-5, axis(), None)
-body = f.createIfcGeometricRepresentationSubContext("Body", "Model", None, None, None, None, ctx, None, "MODEL_VIEW", None)
-units = f.createIfcUnitAssignment([f.createIfcSIUnit(None, "LENGTHUNIT", None, "METRE")])
-project = f.createIfcProject(gid("project"), None, "Doorways", None, None, None, None, [ctx], units)
-site_pl = place()
-site = f.createIfcSite(gid("site"), None, "Site", None, None, site_pl, None, None, "ELEMENT", None, None, None, None, None)
-bldg_pl = place(site_pl)
-building = f.createIfcBuilding(gid("building"), None, "Doorways", None, None, bldg_pl, None, None, "ELEMENT", None, None, None)
-storey_pl = place(bldg_pl)
-storey = f.createIfcBuildingStorey(gid("storey"), None, "Ground floor", None, None, storey_pl, None, None, "ELEMENT", 0.0)
-f.createIfcRelAggregates(gid("agg project"), None, None, None, project, [site])
-f.createIfcRelAggregates(gid("agg site"), None, None, None, site, [building])
-f.createIfcRelAggregates(gid("agg building"), None, None, None, building, [storey])
+body, storey, storey_pl = a.spine("Doorways")
 contained = []
 
 

@@ -20,53 +20,19 @@ Prints JSON: {"elements": {name: {"class", "vertices": [[x, y, z], ...]}}} with 
 element's mesh vertices in world coordinates as IfcOpenShell's geometry iterator makes them.
 """
 
-import hashlib
 import json
 import sys
-import uuid
 
 import ifcopenshell
 import ifcopenshell.geom
-import ifcopenshell.guid
+from authoring import Authoring
 
 out = sys.argv[1]
 f = ifcopenshell.file(schema="IFC4")
+a = Authoring(f, "poinav-thin:")
+gid, pt, d3, axis, place = a.gid, a.pt, a.d3, a.axis, a.place
 
-
-def gid(name):
-    h = hashlib.md5(("poinav-thin:" + name).encode()).hexdigest()
-    return ifcopenshell.guid.compress(uuid.UUID(h).hex)
-
-
-def pt(*c):
-    return f.createIfcCartesianPoint([float(x) for x in c])
-
-
-def d3(*c):
-    return f.createIfcDirection([float(x) for x in c])
-
-
-def axis(x=0.0, y=0.0, z=0.0):
-    return f.createIfcAxis2Placement3D(pt(x, y, z), d3(0, 0, 1), d3(1, 0, 0))
-
-
-def place(rel=None):
-    return f.createIfcLocalPlacement(rel, axis())
-
-
-ctx = f.createIfcGeometricRepresentationContext(None, "Model", 3, 1.0e-5, axis(), None)
-body = f.createIfcGeometricRepresentationSubContext("Body", "Model", None, None, None, None, ctx, None, "MODEL_VIEW", None)
-units = f.createIfcUnitAssignment([f.createIfcSIUnit(None, "LENGTHUNIT", None, "METRE")])
-project = f.createIfcProject(gid("project"), None, "Thin", None, None, None, None, [ctx], units)
-site_pl = place()
-site = f.createIfcSite(gid("site"), None, "Site", None, None, site_pl, None, None, "ELEMENT", None, None, None, None, None)
-bldg_pl = place(site_pl)
-building = f.createIfcBuilding(gid("building"), None, "Thin", None, None, bldg_pl, None, None, "ELEMENT", None, None, None)
-storey_pl = place(bldg_pl)
-storey = f.createIfcBuildingStorey(gid("storey"), None, "Ground floor", None, None, storey_pl, None, None, "ELEMENT", 0.0)
-f.createIfcRelAggregates(gid("agg project"), None, None, None, project, [site])
-f.createIfcRelAggregates(gid("agg site"), None, None, None, site, [building])
-f.createIfcRelAggregates(gid("agg building"), None, None, None, building, [storey])
+body, storey, storey_pl = a.spine("Thin")
 contained = []
 spaces = []
 

@@ -41,3 +41,30 @@ class Authoring:
     def place(self, rel=None, x=0.0, y=0.0, z=0.0):
         """An IfcLocalPlacement at (x, y, z) relative to `rel`."""
         return self.f.createIfcLocalPlacement(rel, self.axis(x, y, z))
+
+    def spine(self, name, storey="Ground floor"):
+        """A metre model's context and body subcontext, project, site, building and one
+        storey at 0.00 m, aggregated; returns (body, storey, storey placement)."""
+        f, gid, place = self.f, self.gid, self.place
+        ctx = f.createIfcGeometricRepresentationContext(None, "Model", 3, 1.0e-5, self.axis(), None)
+        body = f.createIfcGeometricRepresentationSubContext(
+            "Body", "Model", None, None, None, None, ctx, None, "MODEL_VIEW", None
+        )
+        units = f.createIfcUnitAssignment([f.createIfcSIUnit(None, "LENGTHUNIT", None, "METRE")])
+        project = f.createIfcProject(gid("project"), None, name, None, None, None, None, [ctx], units)
+        site_pl = place()
+        site = f.createIfcSite(
+            gid("site"), None, "Site", None, None, site_pl, None, None, "ELEMENT", None, None, None, None, None
+        )
+        bldg_pl = place(site_pl)
+        building = f.createIfcBuilding(
+            gid("building"), None, name, None, None, bldg_pl, None, None, "ELEMENT", None, None, None
+        )
+        storey_pl = place(bldg_pl)
+        st = f.createIfcBuildingStorey(
+            gid("storey"), None, storey, None, None, storey_pl, None, None, "ELEMENT", 0.0
+        )
+        f.createIfcRelAggregates(gid("agg project"), None, None, None, project, [site])
+        f.createIfcRelAggregates(gid("agg site"), None, None, None, site, [building])
+        f.createIfcRelAggregates(gid("agg building"), None, None, None, building, [st])
+        return body, st, storey_pl

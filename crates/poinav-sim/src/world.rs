@@ -132,6 +132,17 @@ pub struct Origin {
     high: DVec2,
 }
 
+impl Origin {
+    /// The borders of the origin's cell a ray along `dir` leaves it by.
+    #[inline]
+    fn edge_ahead(&self, dir: DVec2) -> DVec2 {
+        DVec2::new(
+            if dir.x > 0.0 { self.high.x } else { self.low.x },
+            if dir.y > 0.0 { self.high.y } else { self.low.y },
+        )
+    }
+}
+
 /// One ray's result.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RayHit {
@@ -501,25 +512,13 @@ impl World {
     /// [`World::cast`] from an [`World::origin`]: the same hit.
     #[inline]
     pub fn cast_from(&self, origin: &Origin, dir: DVec2, range: f64, skip: Option<u32>) -> RayHit {
-        let edge = DVec2::new(
-            if dir.x > 0.0 {
-                origin.high.x
-            } else {
-                origin.low.x
-            },
-            if dir.y > 0.0 {
-                origin.high.y
-            } else {
-                origin.low.y
-            },
-        );
         self.walk(
             origin.o,
             dir,
             range,
             skip,
             (origin.cx, origin.cy),
-            edge,
+            origin.edge_ahead(dir),
             range,
         )
     }
@@ -535,25 +534,13 @@ impl World {
     ) -> [RayHit; N] {
         let mut hits = [RayHit::NONE; N];
         for (hit, &dir) in hits.iter_mut().zip(dirs) {
-            let edge = DVec2::new(
-                if dir.x > 0.0 {
-                    origin.high.x
-                } else {
-                    origin.low.x
-                },
-                if dir.y > 0.0 {
-                    origin.high.y
-                } else {
-                    origin.low.y
-                },
-            );
             *hit = self.walk_inline(
                 origin.o,
                 dir,
                 range,
                 skip,
                 (origin.cx, origin.cy),
-                edge,
+                origin.edge_ahead(dir),
                 range,
             );
         }
