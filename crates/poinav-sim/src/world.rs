@@ -512,15 +512,8 @@ impl World {
     /// [`World::cast`] from an [`World::origin`]: the same hit.
     #[inline]
     pub fn cast_from(&self, origin: &Origin, dir: DVec2, range: f64, skip: Option<u32>) -> RayHit {
-        self.walk(
-            origin.o,
-            dir,
-            range,
-            skip,
-            (origin.cx, origin.cy),
-            origin.edge_ahead(dir),
-            range,
-        )
+        let [hit] = self.cast_each(origin, &[dir], range, skip);
+        hit
     }
 
     /// [`World::cast_from`] along each of `dirs`: the same hits, the grid's slices loaded once
