@@ -7,7 +7,8 @@ nav2 on office-a and the 17.9 MB file, simulation steps"). BIN are two `poinav` 
 e.g. the one built from the commit before a refactor (`git worktree add /tmp/before REV && cd
 /tmp/before && cargo build --release -p poinav`) and target/release/poinav. MODEL defaults to
 office-a.ifc and synthetic-merged-office-duplex-ifc2x3.ifc in $POINAV_SHARED/ifc (default
-../shared/ifc). For each model: `inspect --json`, `enrich -o`, `export glb -o`, `export nav2 -o`;
+../shared/ifc). For each model: `inspect --json`, `enrich -o`, `export glb -o`, `export nav2 -o`,
+`plan --all-storeys -o`, `audit -o`;
 then the simulation: `simulate` of a crowd scenario written here (24 robots routing between the
 rooms of a 4-rooms-per-side test building, 60 simulated seconds, full JSON Lines trace) and of
 the shipped `doorway.toml`.
@@ -74,6 +75,8 @@ def commands(models, work):
             (f"enrich {short}", lambda o, m=m: ["enrich", str(m), "-o", str(o / "enriched.ifc")]),
             (f"export glb {short}", lambda o, m=m: ["export", "glb", str(m), "-o", str(o / "m.glb")]),
             (f"export nav2 {short}", lambda o, m=m: ["export", "nav2", str(m), "-o", str(o / "nav2")]),
+            (f"plan {short}", lambda o, m=m: ["plan", str(m), "--all-storeys", "-o", str(o / "plans")]),
+            (f"audit {short}", lambda o, m=m: ["audit", str(m), "-o", str(o / "audit" / "report.html")]),
         ]
     crowd = work / "crowd.toml"
     crowd.write_text(crowd_scenario())
