@@ -50,7 +50,12 @@ impl RoleSet {
 
     /// The roles, in taxonomy order.
     pub fn roles(self) -> impl Iterator<Item = Role> {
-        Role::ALL.iter().copied().filter(move |r| self.has(*r))
+        self.indices().map(|k| Role::ALL[k])
+    }
+
+    /// The roles' indices in `Role::ALL`, ascending (what a table per role is indexed by).
+    pub fn indices(self) -> impl Iterator<Item = usize> {
+        (0..Role::ALL.len()).filter(move |&k| self.0 & (1 << k) != 0)
     }
 }
 

@@ -825,10 +825,9 @@ impl<'f> Sim<'f> {
     }
 
     /// Every robot's controller command shaped by Algorithm 1 into `actions`, its events of
-    /// this step into `events` (one list per robot) and its record into the step's records
-    /// (written in place: the records are about 500 bytes each); with `plan`, also its move
-    /// against the boxes at the start of the step into `guesses` (in the same pass: one call
-    /// into the pool less per step).
+    /// this step into `events` (one list per robot) and its record into the step's records;
+    /// with `plan`, also its move against the boxes at the start of the step into `guesses`
+    /// (in the same pass: one call into the pool less per step).
     fn decide_all(
         &mut self,
         t: f64,
@@ -846,7 +845,7 @@ impl<'f> Sim<'f> {
         // Written in place: a record is about 350 bytes, a move about 200.
         self.current.resize_with(n, blank_record);
         self.guesses.resize_with(n, Move::default);
-        self.nears.resize(n, Near::Few(0, [0; 7]));
+        self.nears.resize(n, Near::of(&[]));
         self.ctrls
             .par_iter_mut()
             .zip(self.minds.par_iter_mut())

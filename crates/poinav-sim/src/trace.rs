@@ -262,7 +262,7 @@ pub struct LineWriter {
     doors: Vec<Short>,
     /// Zone names, quoted.
     zones: Vec<Short>,
-    /// Role labels, quoted, in [`Role::ALL`]'s order (a [`RoleSet`]'s bits).
+    /// Role labels, quoted, in [`Role::ALL`]'s order ([`RoleSet::indices`]).
     roles: Vec<Short>,
     /// Mode labels, quoted, in [`Mode::ALL`]'s order.
     modes: Vec<Short>,
@@ -354,15 +354,11 @@ impl LineWriter {
             None => out.put("null"),
         }
         out.put(",\"roles\":[");
-        let mut first = true;
-        for (bit, label) in self.roles.iter().enumerate() {
-            if r.roles.0 & (1 << bit) != 0 {
-                if !first {
-                    out.put_ascii(b",");
-                }
-                first = false;
-                label.put_into(out);
+        for (n, k) in r.roles.indices().enumerate() {
+            if n > 0 {
+                out.put_ascii(b",");
             }
+            self.roles[k].put_into(out);
         }
         out.put("],\"brush\":{\"on\":");
         out.put(if r.brush.on { "true" } else { "false" });

@@ -239,7 +239,7 @@ pub struct World {
     robots: Rows,
     robot_pairs: Vec<(u32, u32)>,
     /// Per robot: the cells its box covers, as `[x0, y0, x1, y1]` (kept up to date by
-    /// [`World::update_robot`]).
+    /// [`World::place_robot`]).
     rects: Vec<[u32; 4]>,
     /// Per robot: its box's bounding box.
     aabbs: Vec<(DVec2, DVec2)>,
@@ -379,7 +379,7 @@ impl World {
         self.refresh_robots();
     }
 
-    /// Rebuilds the robots' grid from their current boxes (those [`World::update_robot`] set),
+    /// Rebuilds the robots' grid from their current boxes (as the committed moves left them),
     /// unless no box has left or entered a cell since it was last built.
     pub fn refresh_robots(&mut self) {
         if !self.stale {
@@ -405,15 +405,8 @@ impl World {
     }
 
     /// Moves robot `i`'s box within the step (its grid cells are refreshed next step; queries
-    /// are widened by the slack).
-    pub fn update_robot(&mut self, i: usize, b: Obb) {
-        let aabb = b.aabb();
-        let rect = self.rect(aabb);
-        self.place_robot(i, b, aabb, rect);
-    }
-
-    /// [`World::update_robot`] with the box's bounding box and its cells ([`World::rect`])
-    /// already known (a move computes them in parallel, the moves are placed in order).
+    /// are widened by the slack), with the box's bounding box and its cells ([`World::rect`])
+    /// already known: a move computes them in parallel, the moves are placed in order.
     pub(crate) fn place_robot(&mut self, i: usize, b: Obb, aabb: (DVec2, DVec2), rect: [u32; 4]) {
         let old = &self.boxes[i];
         if (old.hl, old.hw) != (b.hl, b.hw) {
@@ -527,7 +520,7 @@ impl World {
     ) -> [RayHit; N] {
         let mut hits = [RayHit::NONE; N];
         for (hit, &dir) in hits.iter_mut().zip(dirs) {
-            *hit = self.walk_inline(
+            *hit = self.walk(
                 origin.o,
                 dir,
                 range,
@@ -541,25 +534,11 @@ impl World {
     }
 
     /// Walks the cells from `(cx, cy)` (whose borders ahead are `edge`) until a hit, `t_out`
-    /// or the grid's edge.
-    #[allow(clippy::too_many_arguments)]
-    fn walk(
-        &self,
-        o: DVec2,
-        dir: DVec2,
-        range: f64,
-        skip: Option<u32>,
-        cell: (usize, usize),
-        edge: DVec2,
-        t_out: f64,
-    ) -> RayHit {
-        self.walk_inline(o, dir, range, skip, cell, edge, t_out)
-    }
-
-    /// [`World::walk`]'s body, inlined where several rays are walked in one call.
+    /// or the grid's edge. Always inlined: a robot's five rays are walked in one call
+    /// ([`World::cast_each`]).
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
-    fn walk_inline(
+    fn walk(
         &self,
         o: DVec2,
         dir: DVec2,
@@ -607,17 +586,13 @@ impl World {
             (cy, self.nx.wrapping_neg())
         };
         let mut c = cy * self.nx + cx;
-        // Everything the loop reads, as local slices (fewer reloads through `self`).
-        let (busy, static_bits) = (&self.busy[..], &self.static_bits[..]);
-        let (r_start, r_items) = (&self.robots.start[..], &self.robots.items[..]);
-        let (boxes, reach) = (&self.boxes[..], &self.reach[..]);
         let skip = skip.unwrap_or(u32::MAX);
         loop {
             // Cells listing nothing are passed by a bit test, cells listing only robots skip
             // the static lists by a second one.
             let (word, bit) = (c >> 6, 1u64 << (c & 63));
-            if busy[word] & bit != 0 {
-                if static_bits[word] & bit != 0 {
+            if self.busy[word] & bit != 0 {
+                if self.static_bits[word] & bit != 0 {
                     for &item in self.statics.cell(c) {
                         if item & PASSAGE != 0 {
                             let s = &self.passages[(item & !PASSAGE) as usize];
@@ -637,15 +612,15 @@ impl World {
                         }
                     }
                 }
-                for &r in &r_items[r_start[c] as usize..r_start[c + 1] as usize] {
+                for &r in self.robots.cell(c) {
                     if r == skip {
                         continue;
                     }
                     // The circle around the box first (`dir` is a unit vector): missed, or entered
                     // no nearer than the best hit, the box cannot give a nearer hit.
-                    let b = &boxes[r as usize];
+                    let b = &self.boxes[r as usize];
                     let rel = b.c - o;
-                    let rad = reach[r as usize];
+                    let rad = self.reach[r as usize];
                     if rel.perp_dot(dir).abs() > rad || rel.dot(dir) - rad >= best {
                         continue;
                     }
