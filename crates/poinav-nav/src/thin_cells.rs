@@ -295,14 +295,10 @@ fn touched(g: Frame, a: DVec2, b: DVec2, mut f: impl FnMut(usize, usize)) {
         return;
     }
     let (ylo, yhi) = (p.y.min(q.y), p.y.max(q.y));
-    // (A segment shorter than 2 x GRAZE across is in the cell its start is in.)
-    let r0 = (ylo + GRAZE).floor();
-    let r1 = (yhi - GRAZE).floor().max(r0);
-    let (r0, r1) = (r0.max(0.0), r1.min(g.height as f64 - 1.0));
-    if r1 < r0 {
+    let Some(rows) = cells_between(ylo, yhi, g.height) else {
         return;
-    }
-    for row in r0 as usize..=r1 as usize {
+    };
+    for row in rows {
         // The part of the segment in the row's band.
         let (y0, y1) = ((row as f64).max(ylo), (row as f64 + 1.0).min(yhi));
         let (x0, x1) = if q.y == p.y {
@@ -312,16 +308,20 @@ fn touched(g: Frame, a: DVec2, b: DVec2, mut f: impl FnMut(usize, usize)) {
             let (u, v) = (x(y0), x(y1));
             (u.min(v), u.max(v))
         };
-        let c0 = (x0 + GRAZE).floor();
-        let c1 = (x1 - GRAZE).floor().max(c0);
-        let (c0, c1) = (c0.max(0.0), c1.min(g.width as f64 - 1.0));
-        if c1 < c0 {
-            continue;
-        }
-        for col in c0 as usize..=c1 as usize {
+        for col in cells_between(x0, x1, g.width).into_iter().flatten() {
             f(col, row);
         }
     }
+}
+
+/// The cells `[i, i + 1)`, of `n` along one axis, the span `lo`..`hi` (in cells) reaches more
+/// than [`GRAZE`] into; a span shorter than 2 x GRAZE is in the cell its start is in. `None`
+/// when that is outside the grid.
+fn cells_between(lo: f64, hi: f64, n: usize) -> Option<std::ops::RangeInclusive<usize>> {
+    let i0 = (lo + GRAZE).floor();
+    let i1 = (hi - GRAZE).floor().max(i0);
+    let (i0, i1) = (i0.max(0.0), i1.min(n as f64 - 1.0));
+    (i0 <= i1).then_some(i0 as usize..=i1 as usize)
 }
 
 #[cfg(test)]
