@@ -22,7 +22,7 @@ use crate::door_frame::DoorFrame;
 use crate::door_status::door_status;
 use crate::floor::{Floor, ObstacleKind};
 use crate::polygon::{self, PassageFrame};
-use crate::thin_cells::{Frame, ThinCells};
+use crate::thin_cells::ThinCells;
 use crate::zone_index::ZoneIndex;
 use crate::NavError;
 use crate::Ring;
@@ -192,32 +192,34 @@ pub struct OccupancyGrid {
     pub gave_up: Vec<GaveUp>,
 }
 
-fn paint(
-    width: usize,
-    height: usize,
-    origin: DVec2,
-    res: f64,
-    ring: &[DVec2],
-    mut f: impl FnMut(usize),
-) {
-    spans(width, height, origin, res, ring, |row, c0, c1| {
-        let base = row * width;
+/// A raster's frame: columns, rows, lower-left corner, cell size (what [`spans`] and the
+/// thin-part painting, [`ThinCells`], draw into).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Frame {
+    pub width: usize,
+    pub height: usize,
+    pub origin: DVec2,
+    pub res: f64,
+}
+
+fn paint(g: Frame, ring: &[DVec2], mut f: impl FnMut(usize)) {
+    spans(g, ring, |row, c0, c1| {
+        let base = row * g.width;
         for col in c0..c1 {
             f(base + col);
         }
     });
 }
 
-/// The cells whose centre is inside `ring` (even-odd), as runs: `f(row, c0, c1)` for columns
-/// `c0..c1` of `row`, rows upwards.
-pub(crate) fn spans(
-    width: usize,
-    height: usize,
-    origin: DVec2,
-    res: f64,
-    ring: &[DVec2],
-    mut f: impl FnMut(usize, usize, usize),
-) {
+/// The cells of `g` whose centre is inside `ring` (even-odd), as runs: `f(row, c0, c1)` for
+/// columns `c0..c1` of `row`, rows upwards.
+pub(crate) fn spans(g: Frame, ring: &[DVec2], mut f: impl FnMut(usize, usize, usize)) {
+    let Frame {
+        width,
+        height,
+        origin,
+        res,
+    } = g;
     let Some((lo, hi)) = polygon::bounds(ring) else {
         return;
     };
@@ -419,19 +421,19 @@ impl OccupancyGrid {
         let door_sides = bounds::door_side_bounds(floor, limits);
         // Obstacles are painted with their parts thinner than a cell ([`ThinCells`]), but
         // around door passages.
-        let frame = Frame {
+        let raster = Frame {
             width,
             height,
             origin,
             res,
         };
-        let mut thin = ThinCells::around_doors(frame, floor.doors.iter().map(|d| &d.ring[..]));
+        let mut thin = ThinCells::around_doors(raster, floor.doors.iter().map(|d| &d.ring[..]));
 
         for (k, z) in floor.zones.iter().enumerate().rev() {
             if zone_past[k].is_some() {
                 continue;
             }
-            paint(width, height, origin, res, &z.ring, |i| {
+            paint(raster, &z.ring, |i| {
                 zone[i] = Some(ZoneIdx::new(k));
                 cells[i] = CellState::Free;
             });
@@ -450,7 +452,7 @@ impl OccupancyGrid {
                     continue;
                 }
                 for ring in &o.rings {
-                    thin.paint(frame, ring, |i| barrier[i] = true);
+                    thin.paint(raster, ring, |i| barrier[i] = true);
                 }
             }
             for (d, sides) in floor.doors.iter().zip(&door_sides) {
@@ -462,7 +464,7 @@ impl OccupancyGrid {
                 if sides.is_some() || too_big {
                     continue;
                 }
-                paint(width, height, origin, res, &d.ring, |i| barrier[i] = true);
+                paint(raster, &d.ring, |i| barrier[i] = true);
             }
             let mut outside = vec![false; n];
             let mut stack: Vec<usize> = Vec::new();
@@ -507,18 +509,11 @@ impl OccupancyGrid {
             let Some((bound, (lo, hi))) = &zone_past[k] else {
                 continue;
             };
-            paint(
-                width,
-                height,
-                origin,
-                res,
-                &polygon::rect(lo.x, lo.y, hi.x, hi.y),
-                |i| {
-                    if zone[i].is_none() && cells[i] == CellState::Free {
-                        cells[i] = CellState::Unknown;
-                    }
-                },
-            );
+            paint(raster, &polygon::rect(lo.x, lo.y, hi.x, hi.y), |i| {
+                if zone[i].is_none() && cells[i] == CellState::Free {
+                    cells[i] = CellState::Unknown;
+                }
+            });
             note(
                 &z.id,
                 "IfcSpace",
@@ -558,7 +553,7 @@ impl OccupancyGrid {
                 state
             };
             for ring in rings {
-                thin.paint(frame, ring, |i| {
+                thin.paint(raster, ring, |i| {
                     // Unknown furniture (or element) does not erase walls under it.
                     if state == CellState::Occupied || cells[i] != CellState::Occupied {
                         cells[i] = state;
@@ -574,18 +569,11 @@ impl OccupancyGrid {
             let given_up = door_bound(d, &door_sides[k], &rows, limits, res);
             if let Some((stage, bound)) = given_up {
                 if let Some((lo, hi)) = polygon::bounds(&d.ring) {
-                    paint(
-                        width,
-                        height,
-                        origin,
-                        res,
-                        &polygon::rect(lo.x, lo.y, hi.x, hi.y),
-                        |i| {
-                            if cells[i] != CellState::Occupied {
-                                cells[i] = CellState::Unknown;
-                            }
-                        },
-                    );
+                    paint(raster, &polygon::rect(lo.x, lo.y, hi.x, hi.y), |i| {
+                        if cells[i] != CellState::Occupied {
+                            cells[i] = CellState::Unknown;
+                        }
+                    });
                 }
                 note(
                     &d.id,
@@ -624,18 +612,18 @@ impl OccupancyGrid {
                     for side in [-1.0, 1.0] {
                         let ring =
                             f.rectangle_at(side * (f.half_width - lining), lining, f.half_depth);
-                        paint(width, height, origin, res, &ring, |i| {
+                        paint(raster, &ring, |i| {
                             cells[i] = CellState::Occupied;
                             door[i] = Some(DoorIdx::new(k));
                         });
                     }
                     let ring = f.rectangle(clear / 2.0, f.half_depth);
-                    paint(width, height, origin, res, &ring, |i| {
+                    paint(raster, &ring, |i| {
                         cells[i] = state;
                         door[i] = Some(DoorIdx::new(k));
                     });
                 } else {
-                    paint(width, height, origin, res, &d.ring, |i| {
+                    paint(raster, &d.ring, |i| {
                         cells[i] = state;
                         door[i] = Some(DoorIdx::new(k));
                     });
@@ -673,7 +661,7 @@ impl OccupancyGrid {
             if doors[k.get()].walled_in || doors[k.get()].gave_up {
                 continue;
             }
-            paint(width, height, origin, res, &ring, |i| {
+            paint(raster, &ring, |i| {
                 if cells[i] == CellState::Unknown {
                     cells[i] = CellState::Free;
                 }

@@ -17,7 +17,7 @@
 
 use glam::DVec2;
 
-use crate::grid::spans;
+use crate::grid::{spans, Frame};
 use crate::polygon::{self, PassageFrame};
 
 /// How far around a door's passage ring (its rectangle in its own frame, grown this much on
@@ -41,15 +41,6 @@ pub(crate) struct ThinCells {
     extra: Vec<usize>,
 }
 
-/// A grid frame: columns, rows, lower-left corner, cell size.
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct Frame {
-    pub width: usize,
-    pub height: usize,
-    pub origin: DVec2,
-    pub res: f64,
-}
-
 impl ThinCells {
     /// Thin parts added everywhere in `g` but around the passage rings `doors`.
     pub(crate) fn around_doors<'a>(g: Frame, doors: impl Iterator<Item = &'a [DVec2]>) -> Self {
@@ -62,7 +53,7 @@ impl ThinCells {
                 at_door = vec![false; g.width * g.height];
             }
             let around = f.rectangle(f.half_width + DOOR_MARGIN_M, f.half_depth + DOOR_MARGIN_M);
-            spans(g.width, g.height, g.origin, g.res, &around, |row, a, b| {
+            spans(g, &around, |row, a, b| {
                 at_door[row * g.width + a..row * g.width + b].fill(true)
             });
         }
@@ -99,7 +90,7 @@ impl ThinCells {
             || !(lo.is_finite() && hi.is_finite())
             || (!always && thick_convex(ring, g.res))
         {
-            spans(g.width, g.height, g.origin, g.res, ring, |row, a, b| {
+            spans(g, ring, |row, a, b| {
                 (row * g.width + a..row * g.width + b).for_each(&mut f)
             });
             return;
@@ -133,7 +124,7 @@ impl ThinCells {
             extra,
             ..
         } = self;
-        spans(g.width, g.height, g.origin, g.res, ring, |row, a, b| {
+        spans(g, ring, |row, a, b| {
             (row * g.width + a..row * g.width + b).for_each(&mut f);
             let base = (row - r0) * bw;
             painted[base + a - c0..base + b - c0].fill(tag);
@@ -338,7 +329,7 @@ mod tests {
     /// The cells `ring` paints with the centre rule alone and with thin parts.
     fn both(ring: &[DVec2]) -> (Vec<usize>, Vec<usize>) {
         let mut centre = Vec::new();
-        spans(G.width, G.height, G.origin, G.res, ring, |row, a, b| {
+        spans(G, ring, |row, a, b| {
             centre.extend(row * G.width + a..row * G.width + b)
         });
         let mut all = Vec::new();
