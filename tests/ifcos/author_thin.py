@@ -15,6 +15,11 @@ the lines x = 4i and y = 0, 5. Across them, each reaching into the walls:
   0 to 0.04 m (below the plan's band; IfcOpenShell 0.9 meshes no open profile of a single
   segment), and "Transom": an IfcPlate 5 mm panel over x 12 .. 16, y 3.5 .. 3.505, from 1.2
   to 2.5 m (above it).
+Between rooms 2 and 3, in the wall on x = 12: "Door", 1.0 m wide over y 1.0 .. 2.0 (an
+opening of that width filled by an IfcDoor whose body is a 4 cm leaf in the middle of the
+wall, 2.1 m high, with space boundaries naming both rooms), and beside it "Sidelight", a
+full-height glazed IfcWindow over y 2.0 .. 2.6 in an opening of its own: a closed 5 mm pane in
+the middle of the wall (x 11.9975 .. 12.0025), 0 to 2.1 m.
 
 Prints JSON: {"elements": {name: {"class", "vertices": [[x, y, z], ...]}}} with each thin
 element's mesh vertices in world coordinates as IfcOpenShell's geometry iterator makes them.
@@ -71,9 +76,8 @@ def product(cls, name, item, kind, **attrs):
 # Walls on the grid lines, 0.2 m thick, 3 m high.
 product("IfcWall", "South", box(-0.1, -0.1, 0.0, 16.1, 0.1, 3.0), "SweptSolid")
 product("IfcWall", "North", box(-0.1, 4.9, 0.0, 16.1, 5.1, 3.0), "SweptSolid")
-for i in range(5):
-    x = 4.0 * i
-    product("IfcWall", "Cross %d" % i, box(x - 0.1, 0.1, 0.0, x + 0.1, 4.9, 3.0), "SweptSolid")
+cross = [product("IfcWall", "Cross %d" % i, box(4.0 * i - 0.1, 0.1, 0.0, 4.0 * i + 0.1, 4.9, 3.0), "SweptSolid")
+         for i in range(5)]
 for i in range(4):
     x = 4.0 * i
     s = product("IfcSpace", "Room %d" % i, box(x + 0.1, 0.1, 0.0, x + 3.9, 4.9, 2.5), "SweptSolid",
@@ -82,12 +86,30 @@ for i in range(4):
     spaces.append(s)
 f.createIfcRelAggregates(gid("agg storey"), None, None, None, storey, spaces)
 
+
+def filling(cls, name, y0, y1, body, **attrs):
+    """An opening over y0 .. y1 in the wall on x = 12 and `cls` filling it."""
+    o = f.createIfcOpeningElement(gid("opening " + name), None, "Opening " + name, None, None, place(storey_pl),
+                                  shape(box(11.9, y0, 0.0, 12.1, y1, 2.1), "SweptSolid"), None, "OPENING")
+    f.createIfcRelVoidsElement(gid("voids " + name), None, None, None, cross[3], o)
+    e = product(cls, name, body, "SweptSolid", OverallHeight=2.1, OverallWidth=y1 - y0, **attrs)
+    f.createIfcRelFillsElement(gid("fills " + name), None, None, None, o, e)
+    return e
+
+
+door = filling("IfcDoor", "Door", 1.0, 2.0, box(11.98, 1.0, 0.0, 12.02, 2.0, 2.1), PredefinedType="DOOR")
+for room in spaces[2:4]:
+    f.createIfcRelSpaceBoundary(gid("boundary Door " + room.Name), None, None, None, room, door, None, "PHYSICAL",
+                                "INTERNAL")
+
 thin = {
     "Fence": product("IfcRailing", "Fence", open_extrusion([(0, 2), (2.5, 2), (2.5, 5)], 0.0, 1.2), "SweptSolid"),
     "Surface wall": product("IfcWall", "Surface wall", vertical_face((4.6, 0.0), (7.4, 5.0), 0.0, 2.5), "SurfaceModel"),
     "Glass": product("IfcPlate", "Glass", box(8.0, 2.5, 0.0, 12.0, 2.505, 2.0), "SweptSolid"),
     "Kick plate": product("IfcRailing", "Kick plate", open_extrusion([(12, 1.5), (14, 1.5), (16, 1.6)], 0.0, 0.04), "SweptSolid"),
     "Transom": product("IfcPlate", "Transom", box(12.0, 3.5, 1.2, 16.0, 3.505, 2.5), "SweptSolid"),
+    "Sidelight": filling("IfcWindow", "Sidelight", 2.0, 2.6, box(11.9975, 2.0, 0.0, 12.0025, 2.6, 2.1),
+                         PredefinedType="WINDOW"),
 }
 f.createIfcRelContainedInSpatialStructure(gid("contained"), None, None, None, contained, storey)
 f.write(out)

@@ -6,7 +6,8 @@
 //! obstacle, which is the plan's section as it is (the glass's exact strip, the surfaces'
 //! 1 cm lines: what the simulator's rays hit). Without them (the fence and the surface wall had
 //! no section, and no cell centre falls in the glass's 5 mm) the same routes exist. A panel
-//! below the plan's band and one above it stay free.
+//! below the plan's band and one above it stay free. A 5 mm glazed sidelight (an IfcWindow)
+//! right beside a door is drawn whole, also next to the door's passage.
 
 use std::path::Path;
 
@@ -224,6 +225,31 @@ fn fences_surfaces_and_glass_panels_are_lines_no_route_crosses() {
             assert_eq!(s, CellState::Occupied, "{name} at {p}");
         }
     }
+    // Beside the door, in the wall's line, the sidelight's 5 mm pane is drawn whole, within
+    // DOOR_MARGIN_M of the door's passage too (only doors', walls' and coverings' thin parts are
+    // drawn by their centres there, `thin_cells::lines_doors`): the passage in the grid is as
+    // wide as the door. (Drawn by its centres, none, the pane's first 0.25 m was free and the
+    // passage looked a quarter of a metre wider.) The door's passage is crossed.
+    let side_line = [DVec2::new(12.0, 2.0), DVec2::new(12.0, 2.6)];
+    let points = crossings(&g, &side_line);
+    assert_eq!(points.len(), 12, "{points:?}");
+    for (p, s) in points.iter().zip(states(&g, &points)) {
+        assert_eq!(s, CellState::Occupied, "Sidelight at {p}");
+    }
+    for p in ifcos_points(&ifcos, "Sidelight") {
+        let d = polygon::boundary_distance(&side_line, p);
+        assert!(
+            d <= 0.0026,
+            "Sidelight: IfcOpenShell's vertex {p} is {d} m off"
+        );
+    }
+    route(
+        &made.building,
+        &profile,
+        DVec2::new(10.0, 1.5),
+        DVec2::new(13.5, 1.0),
+    )
+    .unwrap();
     let inside = |line: &[DVec2]| -> Vec<DVec2> {
         along(line)
             .into_iter()

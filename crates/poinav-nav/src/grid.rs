@@ -22,7 +22,7 @@ use crate::door_frame::DoorFrame;
 use crate::door_status::door_status;
 use crate::floor::{Floor, ObstacleKind};
 use crate::polygon::{self, PassageFrame};
-use crate::thin_cells::ThinCells;
+use crate::thin_cells::{lines_doors, ThinCells};
 use crate::zone_index::ZoneIndex;
 use crate::NavError;
 use crate::Ring;
@@ -451,8 +451,9 @@ impl OccupancyGrid {
                 if past.is_some() {
                     continue;
                 }
+                let lines_door = lines_doors(&o.class);
                 for ring in &o.rings {
-                    thin.paint(raster, ring, |i| barrier[i] = true);
+                    thin.paint(raster, ring, lines_door, |i| barrier[i] = true);
                 }
             }
             for (d, sides) in floor.doors.iter().zip(&door_sides) {
@@ -552,8 +553,9 @@ impl OccupancyGrid {
             } else {
                 state
             };
+            let lines_door = lines_doors(&o.class);
             for ring in rings {
-                thin.paint(raster, ring, |i| {
+                thin.paint(raster, ring, lines_door, |i| {
                     // Unknown furniture (or element) does not erase walls under it.
                     if state == CellState::Occupied || cells[i] != CellState::Occupied {
                         cells[i] = state;

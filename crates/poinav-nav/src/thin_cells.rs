@@ -8,8 +8,10 @@
 //! across the inside closer than a cell. Along a part at least a cell thick neither holds, so
 //! walls, door jambs and furniture come out exactly as before; the floor's obstacles themselves
 //! are never widened (the simulator's rays hit them as they are). Around door passages
-//! ([`DOOR_MARGIN_M`]) thin parts are drawn by their centres alone, as before: linings and
-//! casings thinner than a cell would otherwise narrow the grid's passages.
+//! ([`DOOR_MARGIN_M`]) the thin parts of doors, walls and coverings are drawn by their centres
+//! alone, as before: linings, casings and reveals thinner than a cell would otherwise narrow
+//! the grid's passages ([`lines_doors`]). Every other element is drawn whole there too: a
+//! glass sidelight, a railing or a panel beside a door must not leave free cells along it.
 //!
 //! The work is the grid's fill plus a walk along the boundary (each edge's cells, sorted once;
 //! per cell the edges of its block): linear in the outline and its cells, in a window of the
@@ -21,10 +23,20 @@ use crate::grid::{spans, Frame};
 use crate::polygon::{self, PassageFrame};
 
 /// How far around a door's passage ring (its rectangle in its own frame, grown this much on
-/// every side, metres) thin parts are drawn by their centres alone, as before: door linings
-/// and casings are often thinner than a cell, and touching cells there would narrow the
-/// passage in the grid (the clear width checks and the corpus routes read it as it was).
+/// every side, metres) the thin parts of the elements that line doors ([`lines_doors`]) are
+/// drawn by their centres alone, as before: door linings and casings are often thinner than
+/// a cell, and touching cells there would narrow the passage in the grid (the clear width
+/// checks and the corpus routes read it as it was).
 pub const DOOR_MARGIN_M: f64 = 0.25;
+
+/// True for the IFC classes whose thin parts around a door are its linings, casings or
+/// reveals (doors, walls, coverings: [`DOOR_MARGIN_M`]); false for everything else (windows,
+/// plates, members, curtain walls, railings, furniture), which is drawn whole beside a door.
+pub fn lines_doors(class: &str) -> bool {
+    ["IfcDoor", "IfcWall", "IfcCovering"]
+        .iter()
+        .any(|c| class.starts_with(c))
+}
 
 /// The cells where thin parts are added (all but those around doors, [`DOOR_MARGIN_M`]) and
 /// reusable scratch for [`ThinCells::paint`]: per cell of the current ring's window, which
@@ -68,9 +80,16 @@ impl ThinCells {
     /// boundary touches where the ring is thinner than a cell: none of the painted cells is in
     /// the 3 x 3 block around it (a tip, a part too small for a centre), or two edges that do
     /// not meet pass through that block facing each other across the ring's inside closer than
-    /// a cell ([`facing_closer`]: a panel, a fin); but none around a door ([`DOOR_MARGIN_M`]).
-    pub(crate) fn paint(&mut self, g: Frame, ring: &[DVec2], f: impl FnMut(usize)) {
-        self.paint_searching(g, ring, f, false);
+    /// a cell ([`facing_closer`]: a panel, a fin); but none around a door ([`DOOR_MARGIN_M`])
+    /// when the ring's element `lines_door` ([`lines_doors`] of its class).
+    pub(crate) fn paint(
+        &mut self,
+        g: Frame,
+        ring: &[DVec2],
+        lines_door: bool,
+        f: impl FnMut(usize),
+    ) {
+        self.paint_searching(g, ring, lines_door, f, false);
     }
 
     /// [`ThinCells::paint`], searching thick convex rings too when `always`.
@@ -78,6 +97,7 @@ impl ThinCells {
         &mut self,
         g: Frame,
         ring: &[DVec2],
+        lines_door: bool,
         mut f: impl FnMut(usize),
         always: bool,
     ) {
@@ -185,7 +205,7 @@ impl ThinCells {
                 })
             };
             let cell = (row + r0) * g.width + col + c0;
-            if thin && !at_door.get(cell).copied().unwrap_or(false) {
+            if thin && !(lines_door && at_door.get(cell).copied().unwrap_or(false)) {
                 extra.push(cell);
             }
         }
@@ -333,7 +353,7 @@ mod tests {
             centre.extend(row * G.width + a..row * G.width + b)
         });
         let mut all = Vec::new();
-        ThinCells::default().paint_searching(G, ring, |i| all.push(i), true);
+        ThinCells::default().paint_searching(G, ring, false, |i| all.push(i), true);
         centre.sort_unstable();
         all.sort_unstable();
         (centre, all)
@@ -484,14 +504,14 @@ mod tests {
         assert!(joined(&all, DVec2::new(1.5, 1.5), DVec2::new(4.0, 1.51)));
         // Outside the grid: nothing.
         let mut none = Vec::new();
-        ThinCells::default().paint(G, &polygon::rect(-3.0, -3.0, -2.0, -2.995), |i| {
+        ThinCells::default().paint(G, &polygon::rect(-3.0, -3.0, -2.0, -2.995), false, |i| {
             none.push(i)
         });
         assert!(none.is_empty());
     }
 
     #[test]
-    fn around_a_door_thin_parts_are_drawn_by_their_centres() {
+    fn around_a_door_thin_linings_are_drawn_by_their_centres_other_parts_whole() {
         // A 1 m door passage over x 3.0 .. 4.0, y 2.4 .. 2.6, and a casing beside it
         // reaching into the cells of the passage (2 cm deep); and a 5 mm panel from x 2.01 to 5.99.
         let door = polygon::rect(3.0, 2.4, 4.0, 2.6);
@@ -500,31 +520,59 @@ mod tests {
         let glass = polygon::rect(2.01, 3.51, 5.99, 3.515);
         let mut thin = ThinCells::around_doors(g, std::iter::once(&door[..]));
         let mut plain = ThinCells::default();
-        let paint = |t: &mut ThinCells, ring: &[DVec2]| {
+        let paint = |t: &mut ThinCells, ring: &[DVec2], lines_door: bool| {
             let mut v = Vec::new();
-            t.paint(g, ring, |i| v.push(i));
+            t.paint(g, ring, lines_door, |i| v.push(i));
             v
         };
-        // The casing: column 78 (x 3.90 to 3.95, in the passage) and row 52 touched, no centre
-        // inside; with the door, as its centres draw it (nothing), without, its cells.
-        assert!(paint(&mut thin, &casing).is_empty());
-        assert_eq!(
-            paint(&mut plain, &casing),
-            (78..=81).map(|c| 52 * G.width + c).collect::<Vec<_>>()
-        );
+        // The casing (the door's own, or a wall's reveal): column 78 (x 3.90 to 3.95, in the
+        // passage) and row 52 touched, no centre inside; with the door, as its centres draw it
+        // (nothing), without, its cells. A part of any other element there is drawn whole.
+        let casing_cells: Vec<usize> = (78..=81).map(|c| 52 * G.width + c).collect();
+        assert!(paint(&mut thin, &casing, true).is_empty());
+        assert_eq!(paint(&mut plain, &casing, true), casing_cells);
+        assert_eq!(paint(&mut thin, &casing, false), casing_cells);
         // The panel, 0.9 m from the door (beyond DOOR_MARGIN_M): a line of cells either way.
         let want: Vec<usize> = (40..=119).map(|c| 70 * G.width + c).collect();
-        assert_eq!(paint(&mut thin, &glass), want);
-        assert_eq!(paint(&mut plain, &glass), want);
-        // Moved to 0.2 m from the door, within the margin: its cells over the door's width and
-        // the margin either side (x 2.75 .. 4.25) left out.
+        for lines_door in [true, false] {
+            assert_eq!(paint(&mut thin, &glass, lines_door), want);
+            assert_eq!(paint(&mut plain, &glass, lines_door), want);
+        }
+        // Moved to 0.2 m from the door, within the margin: as a lining, its cells over the
+        // door's width and the margin either side (x 2.75 .. 4.25) left out; as a glass
+        // sidelight (any other element), the whole line.
         let near = polygon::rect(2.01, 2.81, 5.99, 2.815);
-        let cells = paint(&mut thin, &near);
-        let cols: Vec<usize> = cells.iter().map(|i| i % G.width).collect();
+        let cols = |cells: Vec<usize>| cells.iter().map(|i| i % G.width).collect::<Vec<_>>();
         assert_eq!(
-            cols,
-            (40..=54).chain(85..=119).collect::<Vec<_>>(),
-            "{cols:?}"
+            cols(paint(&mut thin, &near, true)),
+            (40..=54).chain(85..=119).collect::<Vec<_>>()
         );
+        assert_eq!(
+            paint(&mut thin, &near, false),
+            (40..=119).map(|c| 56 * G.width + c).collect::<Vec<_>>()
+        );
+    }
+
+    #[test]
+    fn doors_walls_and_coverings_line_doors_nothing_else() {
+        for class in [
+            "IfcDoor",
+            "IfcDoorStandardCase",
+            "IfcWall",
+            "IfcWallStandardCase",
+        ] {
+            assert!(lines_doors(class), "{class}");
+        }
+        assert!(lines_doors("IfcCovering"));
+        for class in [
+            "IfcWindow",
+            "IfcPlate",
+            "IfcMember",
+            "IfcCurtainWall",
+            "IfcRailing",
+        ] {
+            assert!(!lines_doors(class), "{class}");
+        }
+        assert!(!lines_doors("IfcFurniture"));
     }
 }
