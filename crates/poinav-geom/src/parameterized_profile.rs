@@ -5,7 +5,8 @@
 //! Shapes follow the IFC definitions (origin at the centre of the bounding box, as
 //! IfcOpenShell does). Rounded corners of rectangles are drawn as arcs, and so are the root
 //! fillets and edge radii of the I, L, T, U and Z shapes (a rolled IPE 200's fillets are
-//! 4 % of its area); the C shape's internal fillet radius and flange slopes are left out.
+//! 4 % of its area), and the C shape's bends (inside and outside); flange slopes are left
+//! out.
 
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
@@ -199,34 +200,53 @@ pub(crate) fn shape(profile: Entity<'_>, s: f64) -> Result<Shape, GeomError> {
         let g = opt("Girth");
         thin(w.min(d), 2.0 * t)?;
         let (x, y) = (w / 2.0, d / 2.0);
-        let pts = if g > t {
-            vec![
-                p(-x, -y),
-                p(x, -y),
-                p(x, -y + g),
-                p(x - t, -y + g),
-                p(x - t, -y + t),
-                p(-x + t, -y + t),
-                p(-x + t, y - t),
-                p(x - t, y - t),
-                p(x - t, y - g),
-                p(x, y - g),
-                p(x, y),
-                p(-x, y),
-            ]
+        // A cold-formed section: each bend rounded inside by the internal fillet radius and
+        // outside by that plus the wall thickness, as IfcOpenShell draws it.
+        let ri = opt("InternalFilletRadius");
+        let ro = if ri > 0.0 { ri + t } else { 0.0 };
+        let (pts, corners) = if g > t {
+            (
+                vec![
+                    p(-x, -y),
+                    p(x, -y),
+                    p(x, -y + g),
+                    p(x - t, -y + g),
+                    p(x - t, -y + t),
+                    p(-x + t, -y + t),
+                    p(-x + t, y - t),
+                    p(x - t, y - t),
+                    p(x - t, y - g),
+                    p(x, y - g),
+                    p(x, y),
+                    p(-x, y),
+                ],
+                vec![
+                    (0, ro),
+                    (1, ro),
+                    (4, ri),
+                    (5, ri),
+                    (6, ri),
+                    (7, ri),
+                    (10, ro),
+                    (11, ro),
+                ],
+            )
         } else {
-            vec![
-                p(-x, -y),
-                p(x, -y),
-                p(x, -y + t),
-                p(-x + t, -y + t),
-                p(-x + t, y - t),
-                p(x, y - t),
-                p(x, y),
-                p(-x, y),
-            ]
+            (
+                vec![
+                    p(-x, -y),
+                    p(x, -y),
+                    p(x, -y + t),
+                    p(-x + t, -y + t),
+                    p(-x + t, y - t),
+                    p(x, y - t),
+                    p(x, y),
+                    p(-x, y),
+                ],
+                vec![(0, ro), (3, ri), (4, ri), (7, ro)],
+            )
         };
-        Ok((pts, vec![]))
+        Ok((round_corners(&pts, &corners), vec![]))
     } else if profile.is_a("IfcZShapeProfileDef") {
         let (d, fw) = (dim("Depth")?, dim("FlangeWidth")?);
         let (wt, ft) = (dim("WebThickness")?, dim("FlangeThickness")?);
@@ -489,6 +509,16 @@ mod tests {
                 0.001 + 0.0014 + corner(0.01) - 2.0 * corner(0.005),
                 0.1,
                 0.15,
+            ),
+            // C 0.2 x 0.1, 0.005 wall, 0.02 lips, internal radius 0.002: four bends, each
+            // rounded outside by 0.007 and inside by 0.002.
+            (
+                "IFCCSHAPEPROFILEDEF(.AREA.,$,$,0.2,0.1,0.005,0.02,0.002)",
+                0.005 * (0.2 + 2.0 * 0.1 + 2.0 * 0.02)
+                    - 4.0 * 0.005 * 0.005
+                    - 4.0 * (corner(0.007) - corner(0.002)),
+                0.1,
+                0.2,
             ),
             // U: two 0.008 fillets and two 0.004 edge radii.
             (
