@@ -309,26 +309,45 @@ fn i_shape(d: f64, bw: f64, bt: f64, tw: f64, tt: f64, wt: f64, radii: [f64; 4])
 /// `outline` with the corners `corners` (vertex index, radius; 0: sharp) rounded: each
 /// replaced by an arc of that radius tangent to both of its edges, as chords of at most
 /// [`MAX_ARC_STEP`]. A concave corner gains material (a root fillet), a convex one loses it
-/// (an edge radius). A radius too large for the corner's shorter edge is cut to fit it.
+/// (an edge radius). Radii too large for their edges are cut to fit: the two arcs on one
+/// edge share it in proportion (radii wider than half a web end in a half-round end).
 fn round_corners(outline: &[DVec2], corners: &[(usize, f64)]) -> Vec<DVec2> {
     let n = outline.len();
+    let edge = |i: usize| outline[(i + 1) % n] - outline[i];
+    // Per corner: the half angle between its edges and the tangent length its radius needs.
+    let mut cut: Vec<(f64, f64)> = (0..n)
+        .map(|i| {
+            let r = corners
+                .iter()
+                .find(|c| c.0 == i)
+                .map_or(0.0, |c| c.1.max(0.0));
+            let (a, b) = (-edge((i + n - 1) % n), edge(i));
+            // The angle between the corner's two edges, in (0, pi) for a real corner.
+            let angle = a.perp_dot(b).atan2(a.dot(b)).abs();
+            let real = a.length() > 0.0 && b.length() > 0.0;
+            if r <= 0.0 || !real || !(1e-6..=PI - 1e-6).contains(&angle) {
+                (0.0, 0.0)
+            } else {
+                (angle / 2.0, r / (angle / 2.0).tan())
+            }
+        })
+        .collect();
+    for i in 0..n {
+        let j = (i + 1) % n;
+        let (len, want) = (edge(i).length(), cut[i].1 + cut[j].1);
+        if want > len {
+            cut[i].1 *= len / want;
+            cut[j].1 *= len / want;
+        }
+    }
     let mut out = Vec::with_capacity(n + 8 * corners.len());
     for (i, &v) in outline.iter().enumerate() {
-        let r = corners
-            .iter()
-            .find(|c| c.0 == i)
-            .map_or(0.0, |c| c.1.max(0.0));
-        let (a, b) = (outline[(i + n - 1) % n] - v, outline[(i + 1) % n] - v);
-        let (la, lb) = (a.length(), b.length());
-        // The angle between the corner's two edges, in (0, pi) for a real corner.
-        let angle = a.perp_dot(b).atan2(a.dot(b)).abs();
-        if r <= 0.0 || la <= 0.0 || lb <= 0.0 || !(1e-6..=PI - 1e-6).contains(&angle) {
+        let (half, t) = cut[i];
+        if t <= 0.0 {
             out.push(v);
             continue;
         }
-        let (u, w) = (a / la, b / lb);
-        let half = angle / 2.0;
-        let t = (r / half.tan()).min(la.min(lb));
+        let (u, w) = (-edge((i + n - 1) % n).normalize(), edge(i).normalize());
         let r = t * half.tan();
         let centre = v + (u + w).normalize() * (r / half.sin());
         let (from, to) = (v + u * t - centre, v + w * t - centre);
@@ -337,7 +356,11 @@ fn round_corners(outline: &[DVec2], corners: &[(usize, f64)]) -> Vec<DVec2> {
         let start = from.y.atan2(from.x);
         for k in 0..=steps {
             let angle = start + sweep * k as f64 / steps as f64;
-            out.push(centre + r * DVec2::from_angle(angle));
+            // Two arcs meeting mid-edge share their end point: written once.
+            let q = centre + r * DVec2::from_angle(angle);
+            if out.last().is_none_or(|p: &DVec2| p.distance(q) > 1e-12) {
+                out.push(q);
+            }
         }
     }
     out
@@ -519,6 +542,14 @@ mod tests {
                     - 4.0 * (corner(0.007) - corner(0.002)),
                 0.1,
                 0.2,
+            ),
+            // T 0.3 x 0.2, web 0.01, flange 0.02; web edge radii 0.008 (wider than half the
+            // web): the web ends in a half-round end of radius 0.005.
+            (
+                "IFCTSHAPEPROFILEDEF(.AREA.,$,$,0.3,0.2,0.01,0.02,$,$,0.008,$,$,$)",
+                0.004 + 0.0028 - 2.0 * corner(0.005),
+                0.2,
+                0.3,
             ),
             // U: two 0.008 fillets and two 0.004 edge radii.
             (
