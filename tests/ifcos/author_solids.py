@@ -11,8 +11,9 @@ placed at its own spot, so placements count), all on one storey:
 - tapered extrusions: a rectangle into a smaller one, a hollow rectangle into a smaller one
   (a profile with a hole);
 - CSG: IfcSphere, IfcRightCircularCone and IfcRectangularPyramid alone (with Position),
-  IfcCsgSolid differences (block less sphere, cylinder less cone), a union (block and a
-  pyramid above it) and an intersection (block and sphere);
+  IfcCsgSolid differences (block less sphere, cylinder less cone), unions (block and a
+  pyramid above it; block and a sphere overlapping one corner) and an intersection (block
+  and sphere);
 - advanced breps: a quarter cylinder with an IfcCylindricalSurface face and IfcCircle edges
   (and the same with its arcs as IfcSurfaceCurves on the cylinder);
   the same with its curved face and arcs as rational B-splines (weights matter), and with
@@ -156,6 +157,13 @@ case(
     [f.createIfcCsgSolid(f.createIfcBooleanResult("UNION", block, f.createIfcRectangularPyramid(ax3(0.4, 0.4, 2.1), 1.2, 1.2, 0.9)))],
     "CSG",
     volume=8 + 1.2 * 1.2 * 0.9 / 3,
+)
+case(
+    "csg block and overlapping sphere",
+    [f.createIfcCsgSolid(f.createIfcBooleanResult("UNION", block, corner_ball))],
+    "CSG",
+    # The ball's eighth inside the block counts once.
+    volume=8 + 4 / 3 * math.pi * 0.8**3 * 7 / 8,
 )
 case(
     "csg block and sphere",

@@ -28,7 +28,8 @@ trimmed by points; IfcSweptDiskSolidPolygonal with FilletRadius; StartParam/EndP
 IfcSurfaceCurveSweptAreaSolid (on a plane, a cylinder and a surface of linear extrusion),
 IfcFixedReferenceSweptAreaSolid (with a Position) and the
 IFC4X3 IfcDirectrixDerivedReferenceSweptAreaSolid; an IfcArbitraryOpenProfileDef on a
-trimmed polyline and an IfcCenterLineProfileDef, both extruded; in IFC2X3, a bent bar as
+trimmed polyline and an IfcCenterLineProfileDef, both extruded; rolled I, L and U profiles
+with root fillets and edge radii and a cold-formed C with rounded bends, extruded; in IFC2X3, a bent bar as
 Revit writes reinforcement, a crane rail (IfcCraneRailAShapeProfileDef) extruded and a
 profile bounded by an IfcBezierCurve (IfcOpenShell 0.9 draws its chord: compared with a
 reference).
@@ -215,6 +216,21 @@ def author_ifc4(w):
     explicit = f.createIfcArbitraryClosedProfileDef("AREA", None, outline)
     w.element("IfcWall", "centre_line_reference",
               f.createIfcExtrudedAreaSolid(explicit, w.axis(0, 0, 0), w.d(0, 0, 1), 3.0), "SweptSolid")
+    # Rolled steel profiles with root fillets and edge radii, extruded 2 m: an IPE 200 (its
+    # fillets are 4 % of its area), an angle and a channel; and a cold-formed C with rounded
+    # bends.
+    rolled = [
+        ("IfcBeam", "rolled_ipe", f.createIfcIShapeProfileDef("AREA", None, None, 0.1, 0.2, 0.0056, 0.0085, 0.012,
+                                                               None, None)),
+        ("IfcMember", "rolled_angle", f.createIfcLShapeProfileDef("AREA", None, None, 0.15, 0.1, 0.01, 0.01, 0.005,
+                                                                   None)),
+        ("IfcMember", "rolled_channel", f.createIfcUShapeProfileDef("AREA", None, None, 0.3, 0.1, 0.01, 0.02, 0.008,
+                                                                     0.004, None)),
+        ("IfcMember", "cold_formed_c", f.createIfcCShapeProfileDef("AREA", None, None, 0.2, 0.1, 0.005, 0.02, 0.002)),
+    ]
+    for k, (cls, name, profile) in enumerate(rolled):
+        w.element(cls, name, f.createIfcExtrudedAreaSolid(profile, w.axis(2 * k, 40, 0), w.d(0, 0, 1), 2.0),
+                  "SweptSolid")
 
 
 def author_ifc4x3(w):

@@ -587,7 +587,7 @@ impl ItemMesher {
                 }
                 Ok(cut.parts)
             }
-            "UNION" => Ok(parts.into_iter().chain(others).collect()),
+            "UNION" => Ok(unite(parts, others)),
             "INTERSECTION" => match intersect(&parts, &others) {
                 Some(common) => Ok(common),
                 None => {
@@ -758,6 +758,38 @@ pub fn subtract(
     failed.sort_unstable();
     failed.dedup();
     Ok(Subtracted { parts: out, failed })
+}
+
+/// `parts` and `others` together, as a union of solids is: their closed parts fused into one
+/// solid, so that where they overlap counts once (as IfcOpenShell fuses them), and their open
+/// parts as they are. When the boolean library cannot take a closed part or fails, every part
+/// is kept as it is, side by side (the same space taken, overlaps counted twice).
+fn unite(parts: Vec<Part>, others: Vec<Part>) -> Vec<Part> {
+    let all: Vec<Part> = parts.into_iter().chain(others).collect();
+    if all.iter().filter(|p| p.closed).count() < 2 {
+        return all;
+    }
+    let mut fused: Option<Solid> = None;
+    for p in all.iter().filter(|p| p.closed) {
+        let Some(s) = Solid::new(&p.mesh) else {
+            return all;
+        };
+        fused = match fused {
+            None => Some(s),
+            Some(u) => match u.union(&s) {
+                Some(u) => Some(u),
+                None => return all,
+            },
+        };
+    }
+    let mut out: Vec<Part> = all.into_iter().filter(|p| !p.closed).collect();
+    if let Some(fused) = fused.filter(|f| !f.is_empty()) {
+        out.push(Part {
+            mesh: fused.mesh(),
+            closed: true,
+        });
+    }
+    out
 }
 
 /// What the closed parts of `parts` share with the union of the closed parts of `others`.
