@@ -19,8 +19,10 @@ placed at its own spot, so placements count), all on one storey:
   its curved face on an IfcSurfaceOfLinearExtrusion of a rational B-spline arc or on an
   IfcSurfaceOfRevolution of a line; a box whose
   top is a B-spline surface with B-spline edges; a full cylinder whose side face is bounded
-  through a seam edge; a torus bounded by its two seams; a box with a box-shaped void
-  (IfcAdvancedBrepWithVoids);
+  through a seam edge; a cylinder without a seam whose circles are IfcIndexedPolyCurves of
+  arcs (OpenBuildings' way: half-circle edges, one with SameSense false, and a closed edge
+  whose vertex is not the curve's start); a torus bounded by its two seams; a box with a
+  box-shaped void (IfcAdvancedBrepWithVoids);
 - an IfcPolygonalFaceSet with IfcIndexedPolygonalFaceWithVoids (a square tube);
 - an extruded profile bounded by a closed rational B-spline circle.
 
@@ -343,6 +345,46 @@ def seam_cylinder():
 
 
 case("advanced seam cylinder", [seam_cylinder()], "AdvancedBrep", volume=math.pi * 0.25 * 1.2)
+
+
+def polycurve_cylinder():
+    """r = 0.5, h = 1.2 with no seam, as OpenBuildings writes cylinders: edges along
+    IfcIndexedPolyCurves of arcs through 3D points. The bottom circle is two half-circle edges,
+    one along its curve and one against it (SameSense false); the top one is one closed edge
+    whose vertex is the curve's second point, not its first, inside an IfcIntersectionCurve.
+    The side face is bounded by the two circles only."""
+    b = Brep()
+    r, h = 0.5, 1.2
+
+    def arcs(z, *segments):
+        points = f.createIfcCartesianPointList3D([(r, 0.0, z), (0.0, r, z), (-r, 0.0, z), (0.0, -r, z)])
+        return f.createIfcIndexedPolyCurve(points, [f.createIfcArcIndex(s) for s in segments], False)
+
+    b.vertex("E0", r, 0, 0)
+    b.vertex("W0", -r, 0, 0)
+    b.vertex("N1", 0, r, h)
+    b.edge("north0", "E0", "W0", arcs(0.0, (1, 2, 3)))
+    b.edge("south0", "W0", "E0", arcs(0.0, (1, 4, 3)), sense=False)
+    top = arcs(h, (1, 2, 3), (3, 4, 1))
+    b.edge("c1", "N1", "N1", f.createIfcIntersectionCurve(top, [plane(0, 0, h, (0, 0, 1), (1, 0, 0))], "CURVE3D"))
+    cylinder = f.createIfcCylindricalSurface(ax3(), r)
+    side = f.createIfcAdvancedFace(
+        [
+            f.createIfcFaceBound(f.createIfcEdgeLoop([f.createIfcOrientedEdge(None, None, b.e[n], True) for n in ["north0", "south0"]]), True),
+            f.createIfcFaceBound(f.createIfcEdgeLoop([f.createIfcOrientedEdge(None, None, b.e["c1"], False)]), True),
+        ],
+        cylinder,
+        True,
+    )
+    faces = [
+        side,
+        b.face(plane(0, 0, 0, (0, 0, -1), (1, 0, 0)), ["-south0", "-north0"]),
+        b.face(plane(0, 0, h, (0, 0, 1), (1, 0, 0)), ["c1"]),
+    ]
+    return f.createIfcAdvancedBrep(f.createIfcClosedShell(faces))
+
+
+case("advanced polycurve cylinder", [polycurve_cylinder()], "AdvancedBrep", volume=math.pi * 0.25 * 1.2)
 
 
 def torus():
