@@ -265,7 +265,8 @@ impl Surface {
             Surface::Extrusion(x) if x.closed => [Some(x.total()), None],
             Surface::Revolution(r) if r.0.closed => [Some(TAU), Some(r.0.total())],
             Surface::Revolution(_) => [Some(TAU), None],
-            Surface::Plane | Surface::BSpline(_) | Surface::Extrusion(_) => [None, None],
+            Surface::BSpline(b) => b.periods(),
+            Surface::Plane | Surface::Extrusion(_) => [None, None],
         }
     }
 
@@ -413,7 +414,13 @@ impl Surface {
 fn project(b: &bspline::Surface, p: DVec3, near: Option<DVec2>) -> DVec2 {
     let (u0, u1) = b.u.domain();
     let (v0, v1) = b.v.domain();
-    let clamp = |x: DVec2| DVec2::new(x.x.clamp(u0, u1), x.y.clamp(v0, v1));
+    // Along a closed direction the point runs on past the domain's end (modulo the period).
+    let [pu, pv] = b.periods();
+    let keep = |t: f64, lo: f64, hi: f64, period: Option<f64>| match period {
+        Some(_) => t,
+        None => t.clamp(lo, hi),
+    };
+    let clamp = |x: DVec2| DVec2::new(keep(x.x, u0, u1, pu), keep(x.y, v0, v1, pv));
     let n = 24;
     let mut best = (f64::INFINITY, DVec2::new(u0, v0));
     let mut consider = |uv: DVec2| {
@@ -437,10 +444,11 @@ fn project(b: &bspline::Surface, p: DVec3, near: Option<DVec2>) -> DVec2 {
     let h = 1e-7 * ((u1 - u0) + (v1 - v0));
     for _ in 0..30 {
         let s = b.point(uv.x, uv.y);
-        let du = (b.point((uv.x + h).min(u1), uv.y) - b.point((uv.x - h).max(u0), uv.y))
-            / ((uv.x + h).min(u1) - (uv.x - h).max(u0));
-        let dv = (b.point(uv.x, (uv.y + h).min(v1)) - b.point(uv.x, (uv.y - h).max(v0)))
-            / ((uv.y + h).min(v1) - (uv.y - h).max(v0));
+        // Central differences, one-sided at the end of a direction that is not closed.
+        let (ua, ub) = (keep(uv.x - h, u0, u1, pu), keep(uv.x + h, u0, u1, pu));
+        let (va, vb) = (keep(uv.y - h, v0, v1, pv), keep(uv.y + h, v0, v1, pv));
+        let du = (b.point(ub, uv.y) - b.point(ua, uv.y)) / (ub - ua);
+        let dv = (b.point(uv.x, vb) - b.point(uv.x, va)) / (vb - va);
         let r = p - s;
         let (a, c, d) = (du.dot(du), du.dot(dv), dv.dot(dv));
         let det = a * d - c * c;
