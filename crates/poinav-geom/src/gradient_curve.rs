@@ -5,7 +5,8 @@
 //! and `IfcOffsetCurveByDistances` (its basis curve with the lateral and vertical offsets of
 //! its `OffsetValues`, interpolated linearly by distance along, constant past either end).
 //! Any other `IfcCurve` [`crate::curve`] reads is taken as a polyline in plan, with the heights
-//! of its points when it is drawn in 3D (linear between them, by distance in plan).
+//! of its points when it is drawn in 3D (linear between them; distance along it is measured in
+//! space, as IfcOpenShell does).
 //!
 //! Distance along a gradient curve is measured in plan, as IfcOpenShell does; past either end a
 //! curve continues straight along its end tangent.
@@ -98,32 +99,44 @@ enum Plan {
     },
 }
 
+/// How far `d` lies from `along[i - 1]` towards `along[i]`, as a fraction (beyond 0..1 past
+/// the polyline's ends).
+fn fraction(along: &[f64], i: usize, d: f64) -> f64 {
+    let span = along[i] - along[i - 1];
+    if span > 0.0 {
+        (d - along[i - 1]) / span
+    } else {
+        0.0
+    }
+}
+
 impl Plan {
-    /// The height and slope (rise over plan distance) of a polyline at `d`, linear between its
-    /// points and constant past its ends; `None` for a chain of segments.
+    /// The height and slope (rise over plan distance) of a polyline at `d` (distance along its
+    /// points in space), linear between its points and constant past its ends; `None` for a
+    /// chain of segments.
     fn height(&self, d: f64) -> Option<(f64, f64)> {
-        let Plan::Polyline { along, heights, .. } = self else {
+        let Plan::Polyline {
+            points,
+            along,
+            heights,
+        } = self
+        else {
             return None;
         };
         let n = along.len();
-        if d <= along[0] || d >= along[n - 1] {
-            return Some((
-                if d <= along[0] {
-                    heights[0]
-                } else {
-                    heights[n - 1]
-                },
-                0.0,
-            ));
+        if d <= along[0] {
+            return Some((heights[0], 0.0));
+        }
+        if d >= along[n - 1] {
+            return Some((heights[n - 1], 0.0));
         }
         let i = along.partition_point(|&a| a <= d).clamp(1, n - 1);
-        let run = along[i] - along[i - 1];
-        let slope = if run > 0.0 {
-            (heights[i] - heights[i - 1]) / run
-        } else {
-            0.0
-        };
-        Some((heights[i - 1] + slope * (d - along[i - 1]), slope))
+        let (run, rise) = (
+            points[i].distance(points[i - 1]),
+            heights[i] - heights[i - 1],
+        );
+        let slope = if run > 0.0 { rise / run } else { 0.0 };
+        Some((heights[i - 1] + rise * fraction(along, i, d), slope))
     }
 
     fn eval(&self, d: f64) -> Frame2 {
@@ -136,7 +149,7 @@ impl Plan {
                 let (p, q) = (points[i - 1], points[i]);
                 let t = (q - p).normalize_or(DVec2::X);
                 Frame2 {
-                    point: p + t * (d - along[i - 1]),
+                    point: p + (q - p) * fraction(along, i, d),
                     tangent: t,
                 }
             }
@@ -286,10 +299,6 @@ impl BasisCurve {
         if points.len() < 2 {
             return Err(degenerate(&curve, "basis curve has fewer than two points"));
         }
-        let mut along = vec![0.0];
-        for w in points.windows(2) {
-            along.push(along.last().copied().unwrap_or(0.0) + w[0].distance(w[1]));
-        }
         // The heights of a curve drawn in 3D, where its 3D path has the same points in plan
         // (IfcOpenShell keeps them: a directrix at z = -0.2 puts the solid 0.2 lower).
         let heights = crate::curve3d::path(curve, &file_units)
@@ -305,6 +314,12 @@ impl BasisCurve {
                 || vec![0.0; points.len()],
                 |p| p.points.iter().map(|q| q.z).collect(),
             );
+        // Distance along is measured in space (as IfcOpenShell does for a plain curve).
+        let mut along = vec![0.0];
+        for k in 1..points.len() {
+            let step = points[k].extend(heights[k]) - points[k - 1].extend(heights[k - 1]);
+            along.push(along[k - 1] + step.length());
+        }
         Ok(BasisCurve {
             plan: Plan::Polyline {
                 points,

@@ -7,7 +7,8 @@
 //! of open surfaces (IFC4X3 `IfcSectionedSurface` of `IfcOpenCrossProfileDef` and
 //! `IfcArbitraryOpenProfileDef` sections, an extruded open cross profile), their areas within
 //! 1 %, and of sectioned solids along `IfcOffsetCurveByDistances` (constant and growing
-//! offsets) and along a plain 3D `IfcPolyline` (its height kept); on the corpus's
+//! offsets) and along a plain 3D `IfcPolyline` (its heights kept, distance along measured in
+//! space); on the corpus's
 //! railway track, every product of a fixed sample IfcOpenShell meshes (track elements spread
 //! over the track, courses and a rail) is meshed here too, boxes within 1 cm, and every track
 //! element's linear placement resolves. The authored model has no storey and no building: it
