@@ -12,7 +12,8 @@ Usage: .venv/bin/python tests/ifcos/alignment.py RAILWAY.ifc OUT.ifc
    the slopes from an offset point, and horizontal widths) and of IfcArbitraryOpenProfileDef
    sections, and an open cross profile extruded; sectioned solids along two
    IfcOffsetCurveByDistances of the gradient curve (courses named `offset course ...`,
-   constant and growing offsets). The first four proxies are in railway part
+   constant and growing offsets), and a sectioned solid along a plain 3D IfcPolyline 0.2 m
+   below the origin, level and then rising (`course on a 3D polyline`). The first four proxies are in railway part
    West, the other three in East, the courses in none (no storey, no building).
 2. Meshes them, and a fixed sample of RAILWAY.ifc (IfcOpenShell needs about 1.6 s per track
    element there, so the whole file is out of reach): track elements spread over the track,
@@ -222,6 +223,22 @@ def author(path):
         surfaces[name] = f.createIfcSectionedSolidHorizontal(
             Directrix=offset, CrossSections=[beam, beam], CrossSectionPositions=positions
         )
+    # A course along a plain 3D polyline 0.2 m below the origin (as Allplan writes a girder's
+    # directrix), level for 20 m, then rising 1.25 m over 25 m: IfcOpenShell keeps the
+    # polyline's heights and measures distance along it in space.
+    line3d = f.createIfcPolyline(
+        [f.createIfcCartesianPoint(c) for c in [(0.0, -5.0, -0.2), (20.0, -5.0, -0.2), (45.0, -5.0, 1.05)]]
+    )
+    surfaces["course on a 3D polyline"] = f.createIfcSectionedSolidHorizontal(
+        Directrix=line3d,
+        CrossSections=[beam, beam],
+        CrossSectionPositions=[
+            f.createIfcAxis2PlacementLinear(
+                Location=f.createIfcPointByDistanceExpression(DistanceAlong=f.createIfcLengthMeasure(d), BasisCurve=line3d)
+            )
+            for d in (5.0, 40.0)
+        ],
+    )
     for name, item in surfaces.items():
         c = ifcopenshell.api.root.create_entity(f, ifc_class="IfcCourse", name=name)
         c.ObjectPlacement = f.createIfcLocalPlacement(

@@ -20,8 +20,11 @@ placed at its own spot, so placements count), all on one storey:
   its curved face on an IfcSurfaceOfLinearExtrusion of a rational B-spline arc or on an
   IfcSurfaceOfRevolution of a line; a box whose
   top is a B-spline surface with B-spline edges; a full cylinder whose side face is bounded
-  through a seam edge; a torus bounded by its two seams; a box with a box-shaped void
-  (IfcAdvancedBrepWithVoids);
+  through a seam edge; a cylinder without a seam whose circles are IfcIndexedPolyCurves of
+  arcs (OpenBuildings' way: half-circle edges, one with SameSense false, and a closed edge
+  whose vertex is not the curve's start); the same cylinder in B-splines only (its side a
+  rational B-spline surface closed in u, bounded by two closed B-spline circles); a torus bounded by its two seams; a box with a
+  box-shaped void (IfcAdvancedBrepWithVoids);
 - an IfcPolygonalFaceSet with IfcIndexedPolygonalFaceWithVoids (a square tube);
 - an extruded profile bounded by a closed rational B-spline circle.
 
@@ -351,6 +354,83 @@ def seam_cylinder():
 
 
 case("advanced seam cylinder", [seam_cylinder()], "AdvancedBrep", volume=math.pi * 0.25 * 1.2)
+
+
+def polycurve_cylinder():
+    """r = 0.5, h = 1.2 with no seam, as OpenBuildings writes cylinders: edges along
+    IfcIndexedPolyCurves of arcs through 3D points. The bottom circle is two half-circle edges,
+    one along its curve and one against it (SameSense false); the top one is one closed edge
+    whose vertex is the curve's second point, not its first, inside an IfcIntersectionCurve.
+    The side face is bounded by the two circles only."""
+    b = Brep()
+    r, h = 0.5, 1.2
+
+    def arcs(z, *segments):
+        points = f.createIfcCartesianPointList3D([(r, 0.0, z), (0.0, r, z), (-r, 0.0, z), (0.0, -r, z)])
+        return f.createIfcIndexedPolyCurve(points, [f.createIfcArcIndex(s) for s in segments], False)
+
+    b.vertex("E0", r, 0, 0)
+    b.vertex("W0", -r, 0, 0)
+    b.vertex("N1", 0, r, h)
+    b.edge("north0", "E0", "W0", arcs(0.0, (1, 2, 3)))
+    b.edge("south0", "W0", "E0", arcs(0.0, (1, 4, 3)), sense=False)
+    top = arcs(h, (1, 2, 3), (3, 4, 1))
+    b.edge("c1", "N1", "N1", f.createIfcIntersectionCurve(top, [plane(0, 0, h, (0, 0, 1), (1, 0, 0))], "CURVE3D"))
+    cylinder = f.createIfcCylindricalSurface(ax3(), r)
+    side = f.createIfcAdvancedFace(
+        [
+            f.createIfcFaceBound(f.createIfcEdgeLoop([f.createIfcOrientedEdge(None, None, b.e[n], True) for n in ["north0", "south0"]]), True),
+            f.createIfcFaceBound(f.createIfcEdgeLoop([f.createIfcOrientedEdge(None, None, b.e["c1"], False)]), True),
+        ],
+        cylinder,
+        True,
+    )
+    faces = [
+        side,
+        b.face(plane(0, 0, 0, (0, 0, -1), (1, 0, 0)), ["-south0", "-north0"]),
+        b.face(plane(0, 0, h, (0, 0, 1), (1, 0, 0)), ["c1"]),
+    ]
+    return f.createIfcAdvancedBrep(f.createIfcClosedShell(faces))
+
+
+case("advanced polycurve cylinder", [polycurve_cylinder()], "AdvancedBrep", volume=math.pi * 0.25 * 1.2)
+
+
+def closed_bspline_cylinder():
+    """r = 0.5, h = 1.2 with no seam, as OpenBuildings writes cylinders in B-splines only: the
+    side face a rational B-spline surface closed in u (two cubic half circles, weights 1, 1/3,
+    1/3, 1, its first and last rows of control points the same), bounded by two closed
+    rational B-spline circles that start at the surface's closing line."""
+    b = Brep()
+    r, h = 0.5, 1.2
+    half = [(r, 0), (r, 2 * r), (-r, 2 * r), (-r, 0), (-r, -2 * r), (r, -2 * r), (r, 0)]
+    w = [1.0, 1 / 3, 1 / 3, 1.0, 1 / 3, 1 / 3, 1.0]
+    side = f.createIfcRationalBSplineSurfaceWithKnots(
+        3, 1, [[pt(x, y, 0.0), pt(x, y, h)] for x, y in half], "CYLINDRICAL_SURF", True, False, False,
+        [4, 3, 4], [2, 2], [0.0, 0.5, 1.0], [0.0, 1.0], "UNSPECIFIED", [[x, x] for x in w],
+    )
+    quarter = [(r, 0), (r, r), (0, r), (-r, r), (-r, 0), (-r, -r), (0, -r), (r, -r), (r, 0)]
+
+    def circle_at(z):
+        return f.createIfcRationalBSplineCurveWithKnots(
+            2, [pt(x, y, z) for x, y in quarter], "CIRCULAR_ARC", True, False, [3, 2, 2, 2, 3],
+            [0.0, 0.25, 0.5, 0.75, 1.0], "UNSPECIFIED", [1.0, W, 1.0, W, 1.0, W, 1.0, W, 1.0],
+        )
+
+    b.vertex("S0", r, 0, 0)
+    b.vertex("S1", r, 0, h)
+    b.edge("c0", "S0", "S0", circle_at(0.0))
+    b.edge("c1", "S1", "S1", circle_at(h))
+    loop = lambda n, fwd: f.createIfcFaceBound(f.createIfcEdgeLoop([f.createIfcOrientedEdge(None, None, b.e[n], fwd)]), True)
+    faces = [
+        f.createIfcAdvancedFace([loop("c0", True), loop("c1", False)], side, True),
+        b.face(plane(0, 0, 0, (0, 0, -1), (1, 0, 0)), ["-c0"]),
+        b.face(plane(0, 0, h, (0, 0, 1), (1, 0, 0)), ["c1"]),
+    ]
+    return f.createIfcAdvancedBrep(f.createIfcClosedShell(faces))
+
+
+case("advanced closed bspline cylinder", [closed_bspline_cylinder()], "AdvancedBrep", volume=math.pi * 0.25 * 1.2)
 
 
 def torus():

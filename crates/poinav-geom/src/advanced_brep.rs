@@ -138,7 +138,7 @@ impl Mesher {
         if let Some(p) = self.edges.get(&edge.id()) {
             return Ok(p.clone());
         }
-        let p = edge_points(edge, self.s)?;
+        let p = edge_points(edge, &self.units)?;
         self.edges.insert(edge.id(), p.clone());
         Ok(p)
     }

@@ -244,6 +244,9 @@ pub struct Surface {
     /// The basis along v.
     pub v: Basis,
     points: Vec<Vec<DVec4>>,
+    /// Whether the surface closes on itself along u and along v: its first and last rows
+    /// (columns) of control points are the same points (OpenBuildings' cylinders).
+    closed: [bool; 2],
 }
 
 impl Surface {
@@ -267,11 +270,53 @@ impl Surface {
                 )
             })
             .collect::<Option<Vec<_>>>()?;
-        Some(Surface { u, v, points: rows })
+        let size = points
+            .iter()
+            .flatten()
+            .fold(0.0f64, |m, p| m.max((*p - points[0][0]).length()))
+            .max(1e-9);
+        let same =
+            |a: &[DVec3], b: &[DVec3]| a.iter().zip(b).all(|(p, q)| p.distance(*q) <= 1e-9 * size);
+        let closed_u = points.len() > 2 && same(&points[0], &points[points.len() - 1]);
+        let first: Vec<DVec3> = points.iter().map(|r| r[0]).collect();
+        let last: Vec<DVec3> = points.iter().map(|r| r[r.len() - 1]).collect();
+        let closed_v = v.count() > 2 && same(&first, &last);
+        Some(Surface {
+            u,
+            v,
+            points: rows,
+            closed: [closed_u, closed_v],
+        })
     }
 
-    /// The point at `(u, v)`.
+    /// The periods of u and v: the domain's length along a direction in which the surface
+    /// closes on itself, else `None`.
+    pub fn periods(&self) -> [Option<f64>; 2] {
+        let length = |b: &Basis| {
+            let (lo, hi) = b.domain();
+            hi - lo
+        };
+        [
+            self.closed[0].then(|| length(&self.u)),
+            self.closed[1].then(|| length(&self.v)),
+        ]
+    }
+
+    /// The point at `(u, v)`; a parameter along a closed direction is taken modulo its
+    /// period.
     pub fn point(&self, u: f64, v: f64) -> DVec3 {
+        let wrap = |t: f64, b: &Basis, closed: bool| {
+            let (lo, hi) = b.domain();
+            if closed && (t < lo || t > hi) {
+                lo + (t - lo).rem_euclid(hi - lo)
+            } else {
+                t
+            }
+        };
+        let (u, v) = (
+            wrap(u, &self.u, self.closed[0]),
+            wrap(v, &self.v, self.closed[1]),
+        );
         let (su, sv) = (self.u.span(u), self.v.span(v));
         let (nu, nv) = (self.u.functions(su, u), self.v.functions(sv, v));
         let (p, q) = (self.u.degree, self.v.degree);

@@ -113,6 +113,44 @@ impl Path {
         self.params.last().copied().unwrap_or(0.0)
     }
 
+    /// The points of the path from near `a` to near `b` (ends not snapped): along the path
+    /// when `sense`, else against it. `a` and `b` one point (`closed`) gives the whole path
+    /// starting and ending at `a`; on a path that closes on itself, a way that would run
+    /// backwards goes round through the path's start instead.
+    pub fn between(&self, a: DVec3, b: DVec3, sense: bool, closed: bool) -> Vec<DVec3> {
+        let n = self.points.len();
+        if n < 2 {
+            return self.points.clone();
+        }
+        let ends_meet =
+            self.points[0].distance(self.points[n - 1]) <= 1e-9 * self.points[0].length().max(1.0);
+        let (ta, tb) = (self.parameter_of(a), self.parameter_of(b));
+        let join = |first: Path, second: Path| {
+            let mut out = first.points;
+            out.extend(second.points.into_iter().skip(1));
+            out
+        };
+        let mut pts = if closed {
+            join(self.trimmed(Some(ta), None), self.trimmed(None, Some(ta)))
+        } else if (ta <= tb) == sense || !ends_meet {
+            self.trimmed(Some(ta), Some(tb)).points
+        } else if sense {
+            join(self.trimmed(Some(ta), None), self.trimmed(None, Some(tb)))
+        } else {
+            join(self.trimmed(Some(tb), None), self.trimmed(None, Some(ta)))
+        };
+        // `trimmed` runs in the path's direction; the edge runs from `a`.
+        let backwards = match (closed, pts.first()) {
+            (true, _) => !sense,
+            (false, Some(p)) => p.distance(b) < p.distance(a),
+            (false, None) => false,
+        };
+        if backwards {
+            pts.reverse();
+        }
+        pts
+    }
+
     /// The point where `sign * parameter` equals `k` (within the path's range).
     fn at_key(&self, k: f64, sign: f64) -> DVec3 {
         for i in 0..self.points.len() - 1 {
@@ -457,6 +495,39 @@ mod tests {
                 < 1e-12
         );
         assert!((tc.length() - (1.0 + 17f64.sqrt())).abs() < 1e-12);
+    }
+
+    #[test]
+    fn between_two_points_of_a_closed_square_goes_the_edges_way() {
+        // The unit square (0,0) (1,0) (1,1) (0,1) and back to its start.
+        let m = model(
+            "#1=IFCCARTESIANPOINT((0.,0.,0.));#2=IFCCARTESIANPOINT((1.,0.,0.));\
+             #3=IFCCARTESIANPOINT((1.,1.,0.));#4=IFCCARTESIANPOINT((0.,1.,0.));\
+             #5=IFCPOLYLINE((#1,#2,#3,#4,#1));",
+        );
+        let p = path(m.entity(EntityId(5)).unwrap(), &Units::SI).unwrap();
+        let (a, b) = (DVec3::new(0.5, 0.0, 0.0), DVec3::new(0.5, 1.0, 0.0));
+        let v = |x: f64, y: f64| DVec3::new(x, y, 0.0);
+        // Along the curve: by (1,0) and (1,1); against it: by (0,0) and (0,1), back round
+        // through the curve's start.
+        assert_eq!(
+            p.between(a, b, true, false),
+            vec![a, v(1., 0.), v(1., 1.), b]
+        );
+        assert_eq!(
+            p.between(a, b, false, false),
+            vec![a, v(0., 0.), v(0., 1.), b]
+        );
+        assert_eq!(
+            p.between(b, a, true, false),
+            vec![b, v(0., 1.), v(0., 0.), a]
+        );
+        // One vertex: the whole square from it, each way.
+        let c = v(1.0, 0.5);
+        let round = vec![c, v(1., 1.), v(0., 1.), v(0., 0.), v(1., 0.), c];
+        assert_eq!(p.between(c, c, true, true), round);
+        let back: Vec<DVec3> = round.iter().rev().copied().collect();
+        assert_eq!(p.between(c, c, false, true), back);
     }
 
     #[test]

@@ -1,7 +1,8 @@
 //! `IfcEdgeCurve`: the points of an edge of an advanced brep from its start vertex to its end
 //! vertex (both exact) along its `EdgeGeometry`: `IfcLine`, `IfcPolyline`, `IfcCircle` and
 //! `IfcEllipse` (arcs by [`MAX_ARC_STEP`]), B-spline curves (rational too, by the chord
-//! rule), `IfcTrimmedCurve`s of those and surface curves (`IfcSurfaceCurve`,
+//! rule), `IfcIndexedPolyCurve` and `IfcCompositeCurve` (their [`crate::curve3d`] path cut
+//! between the vertices), `IfcTrimmedCurve`s of those and surface curves (`IfcSurfaceCurve`,
 //! `IfcIntersectionCurve`, `IfcSeamCurve`: their `Curve3D`); `SameSense` false runs against
 //! the curve.
 
@@ -15,6 +16,7 @@ use crate::bspline;
 use crate::cartesian_point::point3;
 use crate::curve::MAX_ARC_STEP;
 use crate::error::{degenerate, missing, required_ref, unsupported, GeomError};
+use crate::unit_assignment::Units;
 
 /// Deepest nesting of trimmed curves followed.
 const MAX_DEPTH: usize = 8;
@@ -26,7 +28,8 @@ pub fn vertex(v: Entity<'_>, s: f64) -> Result<DVec3, GeomError> {
 }
 
 /// The points of an `IfcEdgeCurve` from `EdgeStart` to `EdgeEnd`, metres, ends exact.
-pub fn edge_points(edge: Entity<'_>, s: f64) -> Result<Vec<DVec3>, GeomError> {
+pub fn edge_points(edge: Entity<'_>, units: &Units) -> Result<Vec<DVec3>, GeomError> {
+    let s = units.metres_per_unit;
     if !edge.is_a("IfcEdgeCurve") {
         return Err(unsupported(&edge, "edge (only IfcEdgeCurve)"));
     }
@@ -34,7 +37,7 @@ pub fn edge_points(edge: Entity<'_>, s: f64) -> Result<Vec<DVec3>, GeomError> {
     let b = vertex(required_ref(&edge, "EdgeEnd", "IfcVertex")?, s)?;
     let curve = required_ref(&edge, "EdgeGeometry", "IfcCurve")?;
     let sense = edge.get("SameSense").and_then(|v| v.as_enum()) != Some("F");
-    let mut pts = between(curve, a, b, sense, s, 0)?;
+    let mut pts = between(curve, a, b, sense, units, 0)?;
     if pts.len() < 2 {
         pts = vec![a, b];
     }
@@ -49,9 +52,10 @@ fn between(
     a: DVec3,
     b: DVec3,
     sense: bool,
-    s: f64,
+    units: &Units,
     depth: usize,
 ) -> Result<Vec<DVec3>, GeomError> {
+    let s = units.metres_per_unit;
     if depth > MAX_DEPTH {
         return Err(degenerate(&curve, "curves nested too deeply"));
     }
@@ -131,12 +135,15 @@ fn between(
     } else if curve.is_a("IfcTrimmedCurve") {
         let basis = required_ref(&curve, "BasisCurve", "IfcCurve")?;
         let agree = curve.get("SenseAgreement").and_then(|v| v.as_enum()) != Some("F");
-        between(basis, a, b, sense == agree, s, depth + 1)
+        between(basis, a, b, sense == agree, units, depth + 1)
     } else if curve.is_a("IfcSurfaceCurve") {
         // Also IfcIntersectionCurve and IfcSeamCurve: the curve in space, as IfcOpenShell
         // reads them (the curves on the surfaces, AssociatedGeometry, are not needed).
         let space = required_ref(&curve, "Curve3D", "IfcCurve")?;
-        between(space, a, b, sense, s, depth + 1)
+        between(space, a, b, sense, units, depth + 1)
+    } else if curve.is_a("IfcIndexedPolyCurve") || curve.is_a("IfcCompositeCurve") {
+        // Lines and arcs (3D points, as OpenBuildings writes the edges of a cylinder's caps).
+        Ok(crate::curve3d::path(curve, units)?.between(a, b, sense, closed))
     } else {
         Err(unsupported(&curve, "edge curve"))
     }

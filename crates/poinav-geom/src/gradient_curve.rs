@@ -4,7 +4,9 @@
 //! height), `IfcSegmentedReferenceCurve` (cant is not applied: its base curve stands for it)
 //! and `IfcOffsetCurveByDistances` (its basis curve with the lateral and vertical offsets of
 //! its `OffsetValues`, interpolated linearly by distance along, constant past either end).
-//! Any other `IfcCurve` [`crate::curve`] reads is taken as a polyline in plan.
+//! Any other `IfcCurve` [`crate::curve`] reads is taken as a polyline in plan, with the heights
+//! of its points when it is drawn in 3D (linear between them; distance along it is measured in
+//! space, as IfcOpenShell does).
 //!
 //! Distance along a gradient curve is measured in plan, as IfcOpenShell does; past either end a
 //! curve continues straight along its end tangent.
@@ -89,21 +91,65 @@ fn along(seg: &CurveSegment, u: f64) -> Frame2 {
 #[derive(Debug, Clone, PartialEq)]
 enum Plan {
     Segments(Chain),
-    Polyline { points: Vec<DVec2>, along: Vec<f64> },
+    /// A polyline in plan with the height of each point (file units; zero for a 2D curve).
+    Polyline {
+        points: Vec<DVec2>,
+        along: Vec<f64>,
+        heights: Vec<f64>,
+    },
+}
+
+/// How far `d` lies from `along[i - 1]` towards `along[i]`, as a fraction (beyond 0..1 past
+/// the polyline's ends).
+fn fraction(along: &[f64], i: usize, d: f64) -> f64 {
+    let span = along[i] - along[i - 1];
+    if span > 0.0 {
+        (d - along[i - 1]) / span
+    } else {
+        0.0
+    }
 }
 
 impl Plan {
+    /// The height and slope (rise over plan distance) of a polyline at `d` (distance along its
+    /// points in space), linear between its points and constant past its ends; `None` for a
+    /// chain of segments.
+    fn height(&self, d: f64) -> Option<(f64, f64)> {
+        let Plan::Polyline {
+            points,
+            along,
+            heights,
+        } = self
+        else {
+            return None;
+        };
+        let n = along.len();
+        if d <= along[0] {
+            return Some((heights[0], 0.0));
+        }
+        if d >= along[n - 1] {
+            return Some((heights[n - 1], 0.0));
+        }
+        let i = along.partition_point(|&a| a <= d).clamp(1, n - 1);
+        let (run, rise) = (
+            points[i].distance(points[i - 1]),
+            heights[i] - heights[i - 1],
+        );
+        let slope = if run > 0.0 { rise / run } else { 0.0 };
+        Some((heights[i - 1] + rise * fraction(along, i, d), slope))
+    }
+
     fn eval(&self, d: f64) -> Frame2 {
         match self {
             Plan::Segments(c) => c.eval(d),
-            Plan::Polyline { points, along } => {
+            Plan::Polyline { points, along, .. } => {
                 let i = along
                     .partition_point(|&a| a <= d)
                     .clamp(1, points.len() - 1);
                 let (p, q) = (points[i - 1], points[i]);
                 let t = (q - p).normalize_or(DVec2::X);
                 Frame2 {
-                    point: p + t * (d - along[i - 1]),
+                    point: p + (q - p) * fraction(along, i, d),
                     tangent: t,
                 }
             }
@@ -253,12 +299,33 @@ impl BasisCurve {
         if points.len() < 2 {
             return Err(degenerate(&curve, "basis curve has fewer than two points"));
         }
+        // The heights of a curve drawn in 3D, where its 3D path has the same points in plan
+        // (IfcOpenShell keeps them: a directrix at z = -0.2 puts the solid 0.2 lower).
+        let heights = crate::curve3d::path(curve, &file_units)
+            .ok()
+            .filter(|p| {
+                p.points.len() == points.len()
+                    && p.points
+                        .iter()
+                        .zip(&points)
+                        .all(|(a, b)| a.truncate().distance(*b) <= 1e-9 * b.length().max(1.0))
+            })
+            .map_or_else(
+                || vec![0.0; points.len()],
+                |p| p.points.iter().map(|q| q.z).collect(),
+            );
+        // Distance along is measured in space (as IfcOpenShell does for a plain curve).
         let mut along = vec![0.0];
-        for w in points.windows(2) {
-            along.push(along.last().copied().unwrap_or(0.0) + w[0].distance(w[1]));
+        for k in 1..points.len() {
+            let step = points[k].extend(heights[k]) - points[k - 1].extend(heights[k - 1]);
+            along.push(along[k - 1] + step.length());
         }
         Ok(BasisCurve {
-            plan: Plan::Polyline { points, along },
+            plan: Plan::Polyline {
+                points,
+                along,
+                heights,
+            },
             vertical: None,
             metres_per_unit,
             offsets: Vec::new(),
@@ -268,10 +335,10 @@ impl BasisCurve {
     /// The frame at `distance` along the curve, given in file units; the result in metres.
     pub fn frame(&self, distance: f64) -> Frame3 {
         let f = self.plan.eval(distance);
-        let (z, slope) = self
-            .vertical
-            .as_ref()
-            .map_or((0.0, 0.0), |v| v.at(distance));
+        let (z, slope) = match &self.vertical {
+            Some(v) => v.at(distance),
+            None => self.plan.height(distance).unwrap_or((0.0, 0.0)),
+        };
         let tangent = DVec3::new(f.tangent.x, f.tangent.y, slope).normalize();
         let left = DVec3::new(-f.tangent.y, f.tangent.x, 0.0);
         let normal = tangent.cross(left);

@@ -9,7 +9,8 @@
 //! interpolated linearly by distance along; the curve is sampled where it bends, intervals
 //! halved until the curve's midpoint lies within [`SAG_TOLERANCE`] of the chord and the tangent
 //! turns by at most [`MAX_TURN`]. Consecutive sections need the same number of points per ring;
-//! sections with explicit `Axis` / `RefDirection` are not supported.
+//! sections with explicit `Axis` / `RefDirection` are not supported. A position may also be an
+//! `IfcPointByDistanceExpression` itself, as IFC4X3_RC2 files write them.
 
 use glam::{DVec2, DVec3};
 use poinav_ifc::Entity;
@@ -90,16 +91,20 @@ fn lofted(
     let s = units.metres_per_unit;
     let mut sections = Vec::with_capacity(profiles.len());
     for (profile, position) in profiles.into_iter().zip(positions) {
-        if !position.is_a("IfcAxis2PlacementLinear") {
+        let p = if position.is_a("IfcPointByDistanceExpression") {
+            // IFC4X3_RC2 (Allplan) gives the positions as the points themselves.
+            position
+        } else if position.is_a("IfcAxis2PlacementLinear") {
+            if position.get("Axis").is_some() || position.get("RefDirection").is_some() {
+                return Err(unsupported(&position, "cross section with its own axes"));
+            }
+            required_ref(&position, "Location", "IfcPointByDistanceExpression")?
+        } else {
             return Err(unsupported(
                 &position,
                 "expected an IfcAxis2PlacementLinear",
             ));
-        }
-        if position.get("Axis").is_some() || position.get("RefDirection").is_some() {
-            return Err(unsupported(&position, "cross section with its own axes"));
-        }
-        let p = required_ref(&position, "Location", "IfcPointByDistanceExpression")?;
+        };
         let along = p
             .get("DistanceAlong")
             .and_then(|v| v.as_f64())
@@ -276,6 +281,27 @@ mod tests {
         // 20 m along x, 4 m wide centred 1 m to the left (+y), 1 m high centred 0.5 m up.
         assert!((lo - DVec3::new(10.0, -1.0, 0.0)).length() < 1e-9, "{lo}");
         assert!((hi - DVec3::new(30.0, 3.0, 1.0)).length() < 1e-9, "{hi}");
+        assert!((mesh.volume() - 80.0).abs() < 1e-9, "{}", mesh.volume());
+    }
+
+    #[test]
+    fn ifc4x3_rc2_positions_are_points_along_a_3d_polyline() {
+        // As Allplan writes a girder in IFC4X3_RC2: the positions are the points themselves,
+        // the directrix a polyline 0.2 m below the origin; a 4 x 1 m rectangle from 10 to 30 m.
+        let text = "ISO-10303-21;HEADER;FILE_SCHEMA(('IFC4X3_RC2'));ENDSEC;DATA;\n\
+            #1=IFCCARTESIANPOINT((0.,-5.,-0.2));#2=IFCCARTESIANPOINT((45.,-5.,-0.2));\
+            #3=IFCPOLYLINE((#1,#2));#20=IFCRECTANGLEPROFILEDEF(.AREA.,$,$,4.,1.);\
+            #21=IFCPOINTBYDISTANCEEXPRESSION(IFCNONNEGATIVELENGTHMEASURE(10.),$,$,$,#3);\
+            #22=IFCPOINTBYDISTANCEEXPRESSION(IFCNONNEGATIVELENGTHMEASURE(30.),$,$,$,#3);\
+            #25=IFCSECTIONEDSOLIDHORIZONTAL(#3,(#20,#20),(#21,#22),.T.);\n\
+            ENDSEC;END-ISO-10303-21;";
+        let m = Model::from_bytes("t.ifc", text.as_bytes().to_vec()).unwrap();
+        let item = m.entity(EntityId(25)).unwrap();
+        let curve = BasisCurve::read(m.entity(EntityId(3)).unwrap(), &Units::SI).unwrap();
+        let mesh = sectioned_solid_horizontal(item, &Units::SI, &curve).unwrap();
+        let (lo, hi) = mesh.bounds().unwrap();
+        assert!((lo - DVec3::new(10.0, -7.0, -0.7)).length() < 1e-9, "{lo}");
+        assert!((hi - DVec3::new(30.0, -3.0, 0.3)).length() < 1e-9, "{hi}");
         assert!((mesh.volume() - 80.0).abs() < 1e-9, "{}", mesh.volume());
     }
 }

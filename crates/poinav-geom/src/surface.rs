@@ -265,7 +265,8 @@ impl Surface {
             Surface::Extrusion(x) if x.closed => [Some(x.total()), None],
             Surface::Revolution(r) if r.0.closed => [Some(TAU), Some(r.0.total())],
             Surface::Revolution(_) => [Some(TAU), None],
-            Surface::Plane | Surface::BSpline(_) | Surface::Extrusion(_) => [None, None],
+            Surface::BSpline(b) => b.periods(),
+            Surface::Plane | Surface::Extrusion(_) => [None, None],
         }
     }
 
@@ -413,7 +414,19 @@ impl Surface {
 fn project(b: &bspline::Surface, p: DVec3, near: Option<DVec2>) -> DVec2 {
     let (u0, u1) = b.u.domain();
     let (v0, v1) = b.v.domain();
-    let clamp = |x: DVec2| DVec2::new(x.x.clamp(u0, u1), x.y.clamp(v0, v1));
+    // Along a closed direction the point runs on past the domain's end (modulo the period).
+    let [pu, pv] = b.periods();
+    let keep = |t: f64, lo: f64, hi: f64, period: Option<f64>| match period {
+        Some(_) => t,
+        None => t.clamp(lo, hi),
+    };
+    // Results stay in the domain: clamped, or wrapped along a closed direction.
+    let within = |t: f64, lo: f64, hi: f64, period: Option<f64>| match period {
+        Some(w) if t < lo || t > hi => lo + (t - lo).rem_euclid(w),
+        Some(_) => t,
+        None => t.clamp(lo, hi),
+    };
+    let clamp = |x: DVec2| DVec2::new(within(x.x, u0, u1, pu), within(x.y, v0, v1, pv));
     let n = 24;
     let mut best = (f64::INFINITY, DVec2::new(u0, v0));
     let mut consider = |uv: DVec2| {
@@ -437,10 +450,11 @@ fn project(b: &bspline::Surface, p: DVec3, near: Option<DVec2>) -> DVec2 {
     let h = 1e-7 * ((u1 - u0) + (v1 - v0));
     for _ in 0..30 {
         let s = b.point(uv.x, uv.y);
-        let du = (b.point((uv.x + h).min(u1), uv.y) - b.point((uv.x - h).max(u0), uv.y))
-            / ((uv.x + h).min(u1) - (uv.x - h).max(u0));
-        let dv = (b.point(uv.x, (uv.y + h).min(v1)) - b.point(uv.x, (uv.y - h).max(v0)))
-            / ((uv.y + h).min(v1) - (uv.y - h).max(v0));
+        // Central differences, one-sided at the end of a direction that is not closed.
+        let (ua, ub) = (keep(uv.x - h, u0, u1, pu), keep(uv.x + h, u0, u1, pu));
+        let (va, vb) = (keep(uv.y - h, v0, v1, pv), keep(uv.y + h, v0, v1, pv));
+        let du = (b.point(ub, uv.y) - b.point(ua, uv.y)) / (ub - ua);
+        let dv = (b.point(uv.x, vb) - b.point(uv.x, va)) / (vb - va);
         let r = p - s;
         let (a, c, d) = (du.dot(du), du.dot(dv), dv.dot(dv));
         let det = a * d - c * c;
@@ -448,7 +462,12 @@ fn project(b: &bspline::Surface, p: DVec3, near: Option<DVec2>) -> DVec2 {
             break;
         }
         let (gu, gv) = (du.dot(r), dv.dot(r));
-        let step = DVec2::new((d * gu - c * gv) / det, (a * gv - c * gu) / det);
+        // At most half the domain per step: near a collapsed row (a pole) the surface barely
+        // moves with one parameter and the plain step runs off.
+        let step = DVec2::new(
+            ((d * gu - c * gv) / det).clamp(-(u1 - u0) / 2.0, (u1 - u0) / 2.0),
+            ((a * gv - c * gu) / det).clamp(-(v1 - v0) / 2.0, (v1 - v0) / 2.0),
+        );
         let next = clamp(uv + step);
         if (next - uv).length() < 1e-14 * (1.0 + uv.length()) {
             uv = next;
@@ -521,6 +540,68 @@ mod tests {
                 let shifted = s.parameters(p, Some(uv + DVec2::X * TAU)).unwrap();
                 assert!((shifted - uv - DVec2::X * TAU).length() < 1e-9);
             }
+        }
+    }
+
+    #[test]
+    fn a_closed_bowl_with_a_pole_is_periodic_and_projects_within_its_domain() {
+        // A bowl: u from a unit circle at z = 1 through one at z = 0 to the pole at the
+        // origin (a collapsed row); v round the circles, closed (first column = last).
+        let w = std::f64::consts::FRAC_1_SQRT_2;
+        let ring = [
+            (1.0, 0.0),
+            (1.0, 1.0),
+            (0.0, 1.0),
+            (-1.0, 1.0),
+            (-1.0, 0.0),
+            (-1.0, -1.0),
+            (0.0, -1.0),
+            (1.0, -1.0),
+            (1.0, 0.0),
+        ];
+        let weights: Vec<f64> = (0..9).map(|j| if j % 2 == 1 { w } else { 1.0 }).collect();
+        let rows: Vec<Vec<DVec3>> = [(1.0, 1.0), (1.0, 0.5), (0.0, 0.0)]
+            .iter()
+            .map(|&(r, z)| {
+                ring.iter()
+                    .map(|&(x, y)| DVec3::new(r * x, r * y, z))
+                    .collect()
+            })
+            .collect();
+        let knots = |k: &[f64], m: &[i64]| bspline::knot_vector(k, m).unwrap();
+        let b = bspline::Surface::new(
+            bspline::Basis::new(2, knots(&[0.0, 1.0], &[3, 3]), 3).unwrap(),
+            bspline::Basis::new(2, knots(&[0.0, 0.25, 0.5, 0.75, 1.0], &[3, 2, 2, 2, 3]), 9)
+                .unwrap(),
+            &rows,
+            Some(&vec![weights; 3]),
+        )
+        .unwrap();
+        assert_eq!(b.periods(), [None, Some(1.0)]);
+        let s = Surface::BSpline(Box::new(b));
+        // Past the end of v the surface goes on round.
+        assert!((s.point(DVec2::new(0.3, 1.2)) - s.point(DVec2::new(0.3, 0.2))).length() < 1e-12);
+        // Points on the surface come back, just before the closing line too.
+        for uv in [
+            DVec2::new(0.2, 0.99),
+            DVec2::new(0.5, 0.01),
+            DVec2::new(0.9, 0.6),
+        ] {
+            let p = s.point(uv);
+            let back = s.parameters(p, None).unwrap();
+            assert!((s.point(back) - p).length() < 1e-9, "{uv} {back}");
+        }
+        // Off the surface round the pole, where v barely moves the surface (as the bounds of
+        // OpenBuildings' jar): parameters found without v running off.
+        for k in 0..24 {
+            let a = k as f64 * std::f64::consts::TAU / 24.0;
+            let off = DVec3::new(0.15 * a.cos(), 0.15 * a.sin(), 0.0);
+            let uv = s.parameters(off, None).unwrap();
+            assert!(
+                (0.0..=1.0).contains(&uv.x) && (0.0..=1.0).contains(&uv.y),
+                "{off}: {uv}"
+            );
+            assert!(s.point(uv).distance(off) < 0.15, "{off}: {uv}");
         }
     }
 }

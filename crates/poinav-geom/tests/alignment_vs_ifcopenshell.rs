@@ -7,7 +7,8 @@
 //! of open surfaces (IFC4X3 `IfcSectionedSurface` of `IfcOpenCrossProfileDef` and
 //! `IfcArbitraryOpenProfileDef` sections, an extruded open cross profile), their areas within
 //! 1 %, and of sectioned solids along `IfcOffsetCurveByDistances` (constant and growing
-//! offsets); on the corpus's
+//! offsets) and along a plain 3D `IfcPolyline` (its heights kept, distance along measured in
+//! space); on the corpus's
 //! railway track, every product of a fixed sample IfcOpenShell meshes (track elements spread
 //! over the track, courses and a rail) is meshed here too, boxes within 1 cm, and every track
 //! element's linear placement resolves. The authored model has no storey and no building: it
@@ -100,8 +101,9 @@ fn alignments_match_ifcopenshell() {
     let shapes = theirs["authored"].as_object().unwrap();
     assert_eq!(
         shapes.len(),
-        14,
-        "IfcOpenShell meshed 7 proxies, the course, 4 surfaces and 2 courses on offset curves"
+        15,
+        "IfcOpenShell meshed 7 proxies, the course, 4 surfaces, 2 courses on offset curves \
+         and 1 on a 3D polyline"
     );
     let mut surfaces = 0;
     let (mut worst_position, mut worst_angle, mut worst_box) = (0.0f64, 0.0f64, 0.0f64);
@@ -171,7 +173,8 @@ fn alignments_match_ifcopenshell() {
             "surface open profile",
             "surface cross extruded",
             "offset course",
-            "offset course widening"
+            "offset course widening",
+            "course on a 3D polyline"
         ]
     );
     let extruded = &plans[0].items[4];
@@ -185,7 +188,7 @@ fn alignments_match_ifcopenshell() {
     assert_eq!(
         summary,
         [
-            ("Site".to_string(), 7),
+            ("Site".to_string(), 8),
             ("West".to_string(), 4),
             ("East".to_string(), 3)
         ]
