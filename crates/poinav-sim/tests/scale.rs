@@ -295,4 +295,16 @@ fn a_door_crowd_unjams_where_robots_met_nose_to_nose() {
     assert!(first < 16.0 && last < 93.0, "{first} {last}");
     // R6 and R18 crossed the corridor both ways: each travelled more than the 6 m of its route.
     assert!(o.figures[5].travelled > 6.0 && o.figures[17].travelled > 6.0);
+    // Giving way decides from the step's snapshot only: the first 20 s (robots give way from
+    // the first seconds on) give the same bytes on one and four threads.
+    let s = door_crowd(20.0);
+    let traces: Vec<Vec<u8>> = [1, 4]
+        .into_iter()
+        .map(|threads| {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build();
+            let o = pool.unwrap().install(|| run(&s, None, &floor).unwrap());
+            o.trace.unwrap()
+        })
+        .collect();
+    assert!(traces[0] == traces[1], "traces differ");
 }
