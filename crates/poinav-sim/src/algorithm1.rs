@@ -452,8 +452,10 @@ fn shared_zone_at(env: &Env<'_>, p: DVec2) -> bool {
 /// that door has left its heading's cone (a robot driving along a corridor sees a side door
 /// turn away as it nears it). A robot that gives way ([`Robot::giving_way`]), or that `me` has
 /// priority over and stands in a face-off with ([`face_off`]), is never waited for: it steps
-/// aside and waits itself. Returns the nearest such door and
-/// the distance to it.
+/// aside and waits itself. A robot about to enter a corridor (a zone with a C-1 coordination)
+/// from outside it also waits while another robot is in the corridor within [`MERGE_M`] of
+/// the door, not coming through it. Returns the nearest such door, the distance to it and the
+/// robot waited for.
 ///
 /// The other robots are looked up in the step's robot grid ([`World::any_robot_near`]) within
 /// [`DOOR_CONFLICT_M`] of the door, so a crowd at the doors costs what its neighbourhoods
@@ -554,6 +556,10 @@ const CHAIN: usize = 8;
 
 /// A robot ahead closer than this beyond the margin (metres) stops it: it waits for that one.
 const BLOCKED_M: f64 = 0.02;
+
+/// How far (metres, centre to centre along each axis) a robot looks for robots that wait for
+/// it: the farthest a door wait or an A-1 stop reaches back in a queue at a door.
+const WAITERS_M: f64 = 2.0;
 
 /// True when robot `top` (which waits for `me`) has priority over `me` and over every robot
 /// on the wait-for chain from `me` (whose first hop is `first`, this step's) back to it.
@@ -896,7 +902,7 @@ pub fn perceive(
     // out of the way of any robot on its way that waits for it.
     let arrived = robot.arrived;
     if mind.give_way.is_none() && (arrived || mind.waits_for.is_some()) {
-        let reach = DVec2::splat(2.0);
+        let reach = DVec2::splat(WAITERS_M);
         let mut top: Option<usize> = None;
         let first = mind.waits_for.map(|w| w.0 as usize);
         env.world
