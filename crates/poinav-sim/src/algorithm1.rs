@@ -13,6 +13,9 @@
 //!   CoordinationProtocol; an oncoming robot makes both keep to their right-hand wall.
 //! - the +90/-90 ray hits on A-3 elements are the trajectory references of wall following.
 //! - B-1 zones cap the speed.
+//! - Face-off: two robots stopped nose to nose in each other's lane (each waiting for the
+//!   other's door, or stopped by A-1 for the other): the one with priority goes, no longer
+//!   waiting for the other, and the other gives way ([`crate::give_way`]).
 
 use glam::DVec2;
 use poinav_nav::{polygon, DoorIdx, Floor, ObstacleIdx, ZoneIdx};
@@ -23,6 +26,7 @@ use serde::Deserialize;
 use crate::controller::{Command, Side, WallPd};
 use crate::events::{Event, EventKind};
 use crate::geometry::wrap_angle;
+use crate::give_way::{face_off, goes_first, has_priority, GiveWay, STOPPED_M_S};
 use crate::plan::Plan;
 use crate::poi_db::{Element, PoiDb, RoleSet};
 use crate::robot::Robot;
@@ -240,6 +244,11 @@ pub struct Mind {
     keep: Option<WallPd>,
     /// The single-lane door it is waiting at for another robot, if any.
     door_wait: Option<DoorIdx>,
+    /// The robot it waits for (at that door, or stopped by A-1 for it), shared as
+    /// [`Robot::waits_for`].
+    pub waits_for: Option<(u32, Option<DoorIdx>)>,
+    /// Its step aside for a robot with priority after a face-off, if it is giving way.
+    pub give_way: Option<GiveWay>,
 }
 
 impl Mind {
@@ -252,6 +261,8 @@ impl Mind {
             zone: None,
             keep: None,
             door_wait: None,
+            waits_for: None,
+            give_way: None,
         }
     }
 }
@@ -265,6 +276,8 @@ impl Clone for Mind {
             zone,
             keep,
             door_wait,
+            waits_for,
+            give_way,
         } = self;
         Mind {
             estimator: estimator.clone(),
@@ -273,6 +286,8 @@ impl Clone for Mind {
             zone: *zone,
             keep: keep.clone(),
             door_wait: *door_wait,
+            waits_for: *waits_for,
+            give_way: *give_way,
         }
     }
 
@@ -285,6 +300,8 @@ impl Clone for Mind {
             zone,
             keep,
             door_wait,
+            waits_for,
+            give_way,
         } = source;
         self.estimator.clone_from(estimator);
         self.tracked.clone_from(tracked);
@@ -292,6 +309,8 @@ impl Clone for Mind {
         self.zone = *zone;
         self.keep.clone_from(keep);
         self.door_wait = *door_wait;
+        self.waits_for = *waits_for;
+        self.give_way = *give_way;
     }
 }
 
@@ -320,6 +339,9 @@ pub struct Perception {
     pub keep_right: bool,
     /// Stop (YIELD to a robot with priority).
     pub stop: bool,
+    /// While giving way, too close to the other robot to turn: +1 or -1, the way along its
+    /// heading that leads away from it (0: room to turn).
+    pub squeeze: f64,
 }
 
 /// The run-wide things Algorithm 1 reads.
@@ -400,11 +422,6 @@ impl Sink<'_> {
     }
 }
 
-fn has_priority(robots: &[Robot], me: usize, other: usize) -> bool {
-    let (a, b) = (robots[me].priority, robots[other].priority);
-    a > b || (a == b && me < other)
-}
-
 /// A robot waits for a single-lane door while another uses it from the other side, this far from
 /// the door's centre (metres): room for the other to come out.
 pub const DOOR_HOLD_M: f64 = 1.8;
@@ -413,6 +430,18 @@ pub const DOOR_HOLD_M: f64 = 1.8;
 pub const DOOR_CLEAR_M: f64 = 1.3;
 /// Robots farther than this from a door's centre (metres) do not contend for it.
 pub const DOOR_CONFLICT_M: f64 = 3.0;
+/// A robot about to enter a shared (C-1) zone through a single-lane door waits while another
+/// robot is in that zone this close to the door's centre (metres): it merges into the
+/// corridor's traffic, the corridor does not fill up with robots crossing it.
+pub const MERGE_M: f64 = 2.0;
+
+/// True when `p` lies in a zone with a C-1 coordination (a corridor).
+fn shared_zone_at(env: &Env<'_>, p: DVec2) -> bool {
+    env.floor
+        .zones
+        .iter()
+        .any(|z| z.coordination.is_some() && polygon::contains(&z.ring, p))
+}
 
 /// The doors robot `me` must give way at: each door within [`DOOR_CONFLICT_M`] ahead of it
 /// (centre within 50 degrees of its heading), too narrow for two robots side by side, that
@@ -421,16 +450,24 @@ pub const DOOR_CONFLICT_M: f64 = 3.0;
 /// C-1), so the two decide from the same facts: exactly one of them waits, never both, never
 /// neither. `held` is the door it waited at in the last step: it keeps waiting there even when
 /// that door has left its heading's cone (a robot driving along a corridor sees a side door
-/// turn away as it nears it). Returns the nearest such door and the distance to it.
+/// turn away as it nears it). A robot that gives way ([`Robot::giving_way`]), or that `me` has
+/// priority over and stands in a face-off with ([`face_off`]), is never waited for: it steps
+/// aside and waits itself. A robot about to enter a corridor (a zone with a C-1 coordination)
+/// from outside it also waits while another robot is in the corridor within [`MERGE_M`] of
+/// the door, not coming through it. Returns the nearest such door, the distance to it and the
+/// robot waited for.
 ///
 /// The other robots are looked up in the step's robot grid ([`World::any_robot_near`]) within
 /// [`DOOR_CONFLICT_M`] of the door, so a crowd at the doors costs what its neighbourhoods
 /// hold, not every robot per robot; the decision is the same as testing every robot
 /// ([`door_wait_every_robot`]), since a robot farther than that never counts.
-fn door_wait(me: usize, env: &Env<'_>, held: Option<DoorIdx>) -> Option<(DoorIdx, f64)> {
+fn door_wait(me: usize, env: &Env<'_>, held: Option<DoorIdx>) -> Option<(DoorIdx, f64, u32)> {
     door_wait_with(me, env, held, |center, f| {
         let r = DVec2::splat(DOOR_CONFLICT_M);
-        env.world.any_robot_near(center - r, center + r, f)
+        env.world.any_robot_near(center - r, center + r, &mut |r| {
+            f(r);
+            false
+        });
     })
 }
 
@@ -439,26 +476,27 @@ pub fn door_wait_every_robot(
     me: usize,
     env: &Env<'_>,
     held: Option<DoorIdx>,
-) -> Option<(DoorIdx, f64)> {
+) -> Option<(DoorIdx, f64, u32)> {
     door_wait_with(me, env, held, |_, f| {
-        (0..env.robots.len() as u32).any(&mut *f)
+        (0..env.robots.len() as u32).for_each(&mut *f)
     })
 }
 
-/// [`door_wait`] with `others(center, f)` true when `f` is true for some robot that may be
-/// within [`DOOR_CONFLICT_M`] of `center` (it may also offer farther ones, and one twice).
+/// [`door_wait`] with `others(center, f)` calling `f` on every robot that may be within
+/// [`DOOR_CONFLICT_M`] of `center` (it may also offer farther ones, and one twice); also
+/// returns the robot waited for (the lowest index of those that make it wait there).
 fn door_wait_with(
     me: usize,
     env: &Env<'_>,
     held: Option<DoorIdx>,
-    others: impl Fn(DVec2, &mut dyn FnMut(u32) -> bool) -> bool,
-) -> Option<(DoorIdx, f64)> {
+    others: impl Fn(DVec2, &mut dyn FnMut(u32)),
+) -> Option<(DoorIdx, f64, u32)> {
     let robot = &env.robots[me];
     let lim = &robot.limits;
     let pos = robot.state.pos;
     let dir = env.world.robot(me).ax;
     let cone = 50f64.to_radians().cos();
-    let mut nearest: Option<(DoorIdx, f64)> = None;
+    let mut nearest: Option<(DoorIdx, f64, u32)> = None;
     for (d, door) in env.floor.doors.iter().enumerate() {
         let Some(axis) = env.nav.doors[d].axis else {
             continue;
@@ -470,17 +508,23 @@ fn door_wait_with(
             continue;
         }
         let my_side = -to.dot(axis);
-        let waits = others(door.center, &mut |r| {
-            let r = r as usize;
-            if r == me {
-                return false;
+        // About to enter a shared (C-1) zone from outside it through this door, not yet
+        // committed to the door.
+        let merging = mine > DOOR_HOLD_M - 0.2
+            && shared_zone_at(env, door.center - axis * my_side.signum() * 0.5)
+            && !shared_zone_at(env, pos);
+        let mut who: Option<u32> = None;
+        others(door.center, &mut |r32| {
+            let r = r32 as usize;
+            if r == me || who.is_some_and(|w| w <= r32) || !waits_for(env, me, r) {
+                return;
             }
             let o = &env.robots[r];
             let side_by_side = 2.0 * (lim.half_width + o.limits.half_width) + 3.0 * lim.margin;
             let rel = o.state.pos - door.center;
             let theirs = rel.length();
             if door.clear_width_m >= side_by_side || theirs > DOOR_CONFLICT_M {
-                return false;
+                return;
             }
             let in_door = rel.dot(axis).abs() <= 0.3
                 && rel.dot(axis.perp()).abs() <= 0.5 * door.clear_width_m;
@@ -491,13 +535,91 @@ fn door_wait_with(
             // Once waiting, wait until the other has also cleared the door on this side (it
             // turns there, sweeping its corners).
             let clearing = held == Some(DoorIdx::new(d)) && theirs < DOOR_CLEAR_M;
-            (other_side && coming && they_go) || clearing
+            // Entering the shared zone, give way to the robots already in it near the door
+            // (those coming through it: as above).
+            let merge = merging && !coming && theirs <= MERGE_M && rel.dot(axis) * my_side < 0.0;
+            if (other_side && coming && they_go) || clearing || merge {
+                who = Some(r32);
+            }
         });
-        if waits && nearest.is_none_or(|n| mine < n.1) {
-            nearest = Some((DoorIdx::new(d), mine));
+        if let Some(w) = who {
+            if nearest.is_none_or(|n| mine < n.1) {
+                nearest = Some((DoorIdx::new(d), mine, w));
+            }
         }
     }
     nearest
+}
+
+/// Longest wait-for chain (robots) that [`waits_for`] follows to find a cycle.
+const CHAIN: usize = 8;
+
+/// A robot ahead closer than this beyond the margin (metres) stops it: it waits for that one.
+const BLOCKED_M: f64 = 0.02;
+
+/// How far (metres, centre to centre along each axis) a robot looks for robots that wait for
+/// it: the farthest a door wait or an A-1 stop reaches back in a queue at a door.
+const WAITERS_M: f64 = 2.0;
+
+/// True when robot `top` (which waits for `me`) has priority over `me` and over every robot
+/// on the wait-for chain from `me` (whose first hop is `first`, this step's) back to it.
+fn cycle_tops(env: &Env<'_>, me: usize, first: usize, top: usize) -> bool {
+    if !goes_first(env.robots, top, me) {
+        return false;
+    }
+    let mut cur = first;
+    for _ in 0..CHAIN {
+        if cur == top {
+            return true;
+        }
+        if !goes_first(env.robots, top, cur) {
+            return false;
+        }
+        match env.robots[cur].waits_for {
+            Some((next, _)) => cur = next as usize,
+            None => return false,
+        }
+    }
+    false
+}
+
+/// The line robot `o` goes on along: to the door it waits at, else its heading.
+fn line_of(env: &Env<'_>, o: usize) -> DVec2 {
+    let r = &env.robots[o];
+    match r.waits_for {
+        Some((_, Some(door))) => {
+            let to = env.floor.doors[door.get()].center - r.state.pos;
+            to.try_normalize().unwrap_or(env.world.robot(o).ax)
+        }
+        _ => env.world.robot(o).ax,
+    }
+}
+
+/// False when robot `me` must not wait for robot `other` at a door even if the door protocol
+/// says so: `other` has arrived (it is not coming through) or gives way
+/// ([`Robot::giving_way`]), or `me` has priority over it and the two
+/// stand in a face-off ([`face_off`]), or `other`'s published wait-for chain
+/// ([`Robot::waits_for`]) leads back to `me` and `me` has priority over every robot on it (of
+/// a wait-for cycle, the robot with priority goes).
+fn waits_for(env: &Env<'_>, me: usize, other: usize) -> bool {
+    if env.robots[other].giving_way.is_some() || env.robots[other].arrived {
+        return false;
+    }
+    if goes_first(env.robots, me, other) && face_off(env, me, other) {
+        return false;
+    }
+    let mut cur = other;
+    for _ in 0..CHAIN {
+        if !goes_first(env.robots, me, cur) {
+            return true;
+        }
+        match env.robots[cur].waits_for {
+            Some((next, _)) if next as usize == me => return false,
+            Some((next, _)) => cur = next as usize,
+            None => return true,
+        }
+    }
+    true
 }
 
 /// A clearance measurement Algorithm 1 made for a door, to be applied to the POI database (rule
@@ -571,6 +693,8 @@ pub fn perceive(
     // Per element hit: roles, A-1, A-3, robots for C-1.
     let mut left_ref = None;
     let mut right_ref = None;
+    // The robot A-1 stops it for (the nearest hit ahead within BLOCKED_M of the margin).
+    let mut blocked: Option<(u32, f64)> = None;
     for (k, ray) in reading.rays.iter().enumerate() {
         let (sin, cos) = crate::sensor::ray_sin_cos()[k];
         let avoid = match ray.target {
@@ -605,8 +729,19 @@ pub fn perceive(
         if k == FRONT || k == LEFT30 || k == RIGHT30 {
             let lateral = (ray.dist * sin).abs();
             if forward && lateral <= lim.half_width + lim.margin {
-                let free = ray.dist * cos - lim.half_length - lim.margin;
+                let mut free = ray.dist * cos - lim.half_length - lim.margin;
+                if let Target::Robot(r) = ray.target {
+                    // A robot giving way to this one is left room to turn aside.
+                    if env.robots[r as usize].giving_way == Some(me as u32) {
+                        free -= crate::give_way::TURN_ROOM_M;
+                    }
+                }
                 cap = cap.min((2.0 * brake * free.max(0.0)).sqrt());
+                if let Target::Robot(r) = ray.target {
+                    if free < BLOCKED_M && blocked.is_none_or(|b| free < b.1) {
+                        blocked = Some((r, free));
+                    }
+                }
             }
         } else {
             let free = ray.dist - lim.half_width;
@@ -744,11 +879,83 @@ pub fn perceive(
     }
     // C-2 at a single-lane door (any zone): of two robots about to use one door from its two
     // sides, the nearer one goes and the other waits outside DOOR_HOLD_M.
-    mind.door_wait = door_wait(me, env, mind.door_wait).map(|(d, mine)| {
-        c2 = true;
-        cap = cap.min((2.0 * brake * (mine - DOOR_HOLD_M).max(0.0)).sqrt());
-        d
+    let wait = door_wait(me, env, mind.door_wait);
+    mind.door_wait = wait.map(|w| w.0);
+    mind.waits_for = wait
+        .map(|w| (w.2, Some(w.0)))
+        .or(blocked.map(|b| (b.0, None)));
+    // Giving way: to a robot with priority that waits for this one as this one waits for it
+    // (it goes: off the line to its door), or that stands in a face-off with it (the lowest
+    // index of those there); once giving way, until that robot has passed.
+    if mind.give_way.is_some_and(|g| g.done(env, me)) {
+        mind.give_way = None;
+    }
+    if mind
+        .give_way
+        .is_some_and(|g| g.reached(env, me) && face_off(env, me, g.other as usize))
+    {
+        // Still in its way where it stepped to (backed off along its line): further.
+        let o = mind.give_way.map_or(0, |g| g.other as usize);
+        mind.give_way = GiveWay::start(env, me, o, line_of(env, o));
+    }
+    // Of a wait-for cycle, out of the way of the robot that goes first in it; having arrived,
+    // out of the way of any robot on its way that waits for it.
+    let arrived = robot.arrived;
+    if mind.give_way.is_none() && (arrived || mind.waits_for.is_some()) {
+        let reach = DVec2::splat(WAITERS_M);
+        let mut top: Option<usize> = None;
+        let first = mind.waits_for.map(|w| w.0 as usize);
+        env.world
+            .any_robot_near(pos - reach, pos + reach, &mut |p| {
+                let p = p as usize;
+                if top.is_none_or(|t| p < t)
+                    && env.robots[p].waits_for.is_some_and(|w| w.0 as usize == me)
+                    && match (arrived, first) {
+                        (true, _) => !env.robots[p].arrived,
+                        (false, Some(f)) => cycle_tops(env, me, f, p),
+                        (false, None) => false,
+                    }
+                {
+                    top = Some(p);
+                }
+                false
+            });
+        mind.give_way = top.and_then(|p| GiveWay::start(env, me, p, line_of(env, p)));
+    }
+    if mind.give_way.is_none() && robot.state.speed.abs() < STOPPED_M_S {
+        let reach = DVec2::splat(crate::give_way::FACE_OFF_M);
+        let mut first: Option<usize> = None;
+        env.world
+            .any_robot_near(pos - reach, pos + reach, &mut |r| {
+                let r = r as usize;
+                if first.is_none_or(|f| r < f)
+                    && goes_first(env.robots, r, me)
+                    && face_off(env, me, r)
+                {
+                    first = Some(r);
+                }
+                false
+            });
+        mind.give_way = first.and_then(|o| GiveWay::start(env, me, o, line_of(env, o)));
+    }
+    let squeeze = mind.give_way.map_or(0.0, |g| {
+        let o = g.other as usize;
+        let rel = env.robots[o].state.pos - pos;
+        let room = env.world.robot_radius(me) + env.world.robot_radius(o) + 0.02;
+        match (rel.length() < room, rel.dot(dir) > 0.0) {
+            (false, _) => 0.0,
+            (true, true) => -1.0,
+            (true, false) => 1.0,
+        }
     });
+    // Waiting at the door stops it outside DOOR_HOLD_M, unless it gives way (then it steps
+    // aside, off the other's line).
+    if let Some((_, mine, _)) = wait {
+        c2 = true;
+        if mind.give_way.is_none() {
+            cap = cap.min((2.0 * brake * (mine - DOOR_HOLD_M).max(0.0)).sqrt());
+        }
+    }
     if c2 {
         roles.insert(Role::RobotInteraction);
     }
@@ -775,6 +982,7 @@ pub fn perceive(
             nearest,
             keep_right,
             stop,
+            squeeze,
         },
         pending,
     )
@@ -915,7 +1123,8 @@ pub fn zone_coordination(
 }
 
 /// ComputeNavigationAction: the controller's command within the speed cap, steered by A-1 side
-/// clearance, and along the right-hand wall while robots meet (unless driven by keys).
+/// clearance, and along the right-hand wall while robots meet (unless driven by keys); while
+/// the robot gives way, the step aside instead (within the cap, whatever the protocol's stop).
 pub fn decide(
     p: &Perception,
     cmd: Command,
@@ -926,6 +1135,10 @@ pub fn decide(
     beh: &Behaviour,
 ) -> Command {
     let lim = &robot.limits;
+    if let (Some(g), false) = (mind.give_way, manual) {
+        mind.keep = None;
+        return g.command(robot, p.speed_cap, p.squeeze);
+    }
     let mut v = if cmd.v >= 0.0 {
         cmd.v.min(p.speed_cap)
     } else {
@@ -942,7 +1155,9 @@ pub fn decide(
         let pd = mind
             .keep
             .get_or_insert_with(|| WallPd::new(Side::Right, target));
-        if p.right_ref.is_some() {
+        // Only while driving: a robot turning in place (to line up with a door) turns as its
+        // controller says, or the two would hold it swinging on the spot.
+        if p.right_ref.is_some() && cmd.v > 0.0 {
             omega = pd.omega(
                 p.right_ref,
                 t,
@@ -953,7 +1168,11 @@ pub fn decide(
     } else {
         mind.keep = None;
     }
-    omega += p.turn_bias;
+    // A-1's side steering while driving only: added to a turn in place (lining up with a
+    // door, a jamb close beside) it can cancel the turn and hold the robot still for ever.
+    if cmd.v != 0.0 {
+        omega += p.turn_bias;
+    }
     Command {
         v,
         omega: omega.clamp(-lim.max_turn, lim.max_turn),

@@ -457,6 +457,7 @@ fn perception(cap: f64) -> Perception {
         nearest: None,
         keep_right: false,
         stop: false,
+        squeeze: 0.0,
     }
 }
 
@@ -546,6 +547,9 @@ fn door_waits_through_the_grid_equal_those_testing_every_robot() {
                 profile: profile.clone(),
                 limits: Limits::new(profile, 50.0, 100.0),
                 priority: (k % 2) as i64,
+                giving_way: None,
+                waits_for: None,
+                arrived: false,
                 state: RobotState {
                     pos: at,
                     heading: rnd() * std::f64::consts::TAU - std::f64::consts::PI,
@@ -580,4 +584,103 @@ fn door_waits_through_the_grid_equal_those_testing_every_robot() {
     // Not trivial: many robots wait, some at the door they held.
     assert!(waits > 80, "{waits} robots wait");
     assert!(held_waits > 10, "{held_waits} keep waiting where they held");
+}
+
+/// The door crowd's deadlock (R6 and R18 of `tests/scale.rs`): A left Room 2's door heading for
+/// Room 5's across the corridor, B left Room 5's heading for Room 2's; they meet nose to nose
+/// at (6.2, 4.9) and (6.2, 5.9), each waiting at the other's door (held, the other within
+/// DOOR_CLEAR_M of it) and each within DOOR_HOLD_M of it: before giving way both were capped to
+/// 0 for ever. Stopped (a face-off) or still moving (the published wait-for cycle alone), A (it
+/// goes first: lower index) no longer waits and B steps aside off A's line to Room 5's door.
+#[test]
+fn of_two_robots_waiting_for_each_other_one_goes_and_the_other_gives_way() {
+    let scenario = crate::Scenario::from_toml(
+        "name = \"doors\"\nduration_s = 1.0\n[building]\ndemo = { rooms_per_side = 3 }\n[[robot]]\nname = \"R\"\nstart = { x = 1.0, y = 1.0 }\ncontroller = { kind = \"idle\" }\n",
+        "doors.toml",
+        std::path::Path::new("."),
+    )
+    .unwrap();
+    let floor = crate::test_floor::prepared(&scenario, None);
+    let door = |name: &str| {
+        let d = floor
+            .doors
+            .iter()
+            .position(|d| d.name.as_deref() == Some(name));
+        DoorIdx::new(d.unwrap())
+    };
+    let (room2, room5) = (door("Door Room 2"), door("Door Room 5"));
+    assert_eq!(floor.doors[room2.get()].center, DVec2::new(6.2, 4.1));
+    assert!((floor.doors[room5.get()].center - DVec2::new(6.2, 6.7)).length() < 1e-9);
+    for speed in [0.0, 0.2] {
+        let mut robots = vec![
+            robot("A", DVec2::new(6.2, 4.9), FRAC_PI_2, 0),
+            robot("B", DVec2::new(6.2, 5.9), -FRAC_PI_2, 0),
+        ];
+        // As published by the last step: each waits for the other at its door.
+        robots[0].waits_for = Some((1, Some(room5)));
+        robots[1].waits_for = Some((0, Some(room2)));
+        for r in &mut robots {
+            r.state.speed = speed;
+        }
+        let mut v = View::new(&floor, robots);
+        let mut a = Mind::new();
+        a.door_wait = Some(room5);
+        let mut b = Mind::new();
+        b.door_wait = Some(room2);
+        let (pa, _) = v.perceive(0, &mut a);
+        let (pb, _) = v.perceive(1, &mut b);
+        // A goes: no door wait, only A-1 (B's box 0.1 m beyond the margin) and the corridor's
+        // SPEED_REDUCTION (2.5 m/s) cap it.
+        assert_eq!((a.door_wait, a.waits_for, a.give_way), (None, None, None));
+        assert!(
+            close(pa.speed_cap, (2.0 * BRAKE * 0.1f64).sqrt()),
+            "{}",
+            pa.speed_cap
+        );
+        // B still waits at Room 2's door, for A, and gives way: a step aside to A's right,
+        // its half length + A's half width + twice the margin (0.95 m) off A's line.
+        assert_eq!(b.waits_for, Some((0, Some(room2))), "speed {speed}");
+        let g = b.give_way.expect("B gives way");
+        assert_eq!(g.other, 0);
+        assert!(
+            (g.spot - DVec2::new(7.15, 5.9)).length() < 1e-9,
+            "{}",
+            g.spot
+        );
+        // Its door wait no longer stops it. Too close to A to turn (centres 1.0 m apart, their
+        // corners sweep 0.53 m each), it first backs straight away from A at 0.3 x 2.5 m/s.
+        assert!(pb.speed_cap > 0.0);
+        assert_eq!(pb.squeeze, -1.0);
+        let r = &v.robots[1];
+        let cmd = decide(
+            &pb,
+            Command { v: 2.0, omega: 0.0 },
+            r,
+            &mut b,
+            0.0,
+            false,
+            &v.behaviour,
+        );
+        assert_eq!(
+            cmd,
+            Command {
+                v: -0.75,
+                omega: 0.0
+            }
+        );
+        // With room to turn, it turns towards the spot (to its left) in place.
+        let mut p = pb.clone();
+        p.squeeze = 0.0;
+        let cmd = decide(
+            &p,
+            Command { v: 2.0, omega: 0.0 },
+            r,
+            &mut b,
+            0.0,
+            false,
+            &v.behaviour,
+        );
+        assert_eq!(cmd.v, 0.0);
+        assert!(close(cmd.omega, 100f64.to_radians()), "{}", cmd.omega);
+    }
 }

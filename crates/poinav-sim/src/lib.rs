@@ -21,6 +21,7 @@ mod error;
 pub mod events;
 pub mod expect;
 pub mod geometry;
+pub mod give_way;
 mod key_error;
 pub mod neighbours;
 pub mod output;

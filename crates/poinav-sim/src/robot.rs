@@ -121,6 +121,14 @@ pub struct Robot {
     pub priority: i64,
     /// State.
     pub state: RobotState,
+    /// The robot it is giving way to after a face-off ([`crate::give_way`]), shared with the
+    /// others as its pose is (set at the end of each step's decisions): nobody waits for it.
+    pub giving_way: Option<u32>,
+    /// The robot it waits for, at a single-lane door (and the door) or stopped by A-1 for it,
+    /// shared likewise: robots follow these chains to find wait-for cycles.
+    pub waits_for: Option<(u32, Option<poinav_nav::DoorIdx>)>,
+    /// It has arrived (shared likewise): it gives way to robots still on their way.
+    pub arrived: bool,
 }
 
 impl Robot {

@@ -498,6 +498,9 @@ impl<'f> Sim<'f> {
                 profile: s.profile.clone(),
                 limits,
                 priority: s.priority,
+                giving_way: None,
+                waits_for: None,
+                arrived: false,
                 state: RobotState {
                     pos: s.start,
                     heading: wrap_angle(s.heading_deg.to_radians()),
@@ -885,6 +888,10 @@ impl<'f> Sim<'f> {
                     let action =
                         algorithm1::decide(p, cmd, robot, mind, t, mode == Mode::Keys, behaviour);
                     *action_out = action;
+                    // Shared with the others for the next step, as the pose is.
+                    robot.giving_way = mind.give_way.map(|g| g.other);
+                    robot.waits_for = mind.waits_for;
+                    robot.arrived = *arrived;
                     for c in &control {
                         let kind = match c {
                             ControlEvent::Key(key, down) => EventKind::Key {

@@ -139,6 +139,9 @@ pub(crate) fn robot(name: &str, pos: DVec2, heading: f64, priority: i64) -> Robo
         limits: Limits::new(&profile, 50.0, 100.0),
         profile,
         priority,
+        giving_way: None,
+        waits_for: None,
+        arrived: false,
         state: RobotState {
             pos,
             heading,

@@ -150,11 +150,11 @@ fn without_a_trace_summary_expectations_and_plots_are_unchanged() {
 }
 
 /// 24 robots, three in each of the 8 rooms of a 4-rooms-per-side test building, each driving to
-/// a room across the corridor: they crowd at the single-lane doors.
-fn door_crowd() -> Scenario {
+/// a room across the corridor, for `duration_s`: they crowd at the single-lane doors.
+fn door_crowd(duration_s: f64) -> Scenario {
     let rooms = 4usize;
     let mut s = format!(
-        "name = \"door-crowd\"\nduration_s = 5.0\n[building]\ndemo = {{ rooms_per_side = {rooms} }}\n"
+        "name = \"door-crowd\"\nduration_s = {duration_s:?}\n[building]\ndemo = {{ rooms_per_side = {rooms} }}\n"
     );
     let mut k = 0;
     for side in 0..2 {
@@ -179,11 +179,12 @@ fn door_crowd() -> Scenario {
 }
 
 /// The single-lane door check looks robots up in the step's grid instead of testing every
-/// robot; a crowd at the doors decides as it did before that change (the events and distances
-/// below are those of the code that tested every robot, commit 0376b34).
+/// robot; a crowd at the doors decides as it does testing every robot (the events and distances
+/// below are those of `door_wait_every_robot` in place of the grid lookup; the first 24 C-2
+/// switches, to step 48, are those of commit 0376b34, before robots gave way).
 #[test]
 fn a_crowd_at_the_doors_decides_as_before_the_grid_lookup() {
-    let s = door_crowd();
+    let s = door_crowd(5.0);
     let floor = prepare(&s, None).unwrap().floor().clone();
     let o = run(&s, None, &floor).unwrap();
     let c2: Vec<(u64, u32)> = o
@@ -217,6 +218,39 @@ fn a_crowd_at_the_doors_decides_as_before_the_grid_lookup() {
         (48, 20),
         (48, 22),
         (48, 23),
+        (49, 1),
+        (49, 4),
+        (49, 7),
+        (49, 10),
+        (50, 2),
+        (50, 5),
+        (50, 8),
+        (50, 11),
+        (75, 5),
+        (75, 13),
+        (75, 14),
+        (78, 22),
+        (78, 23),
+        (79, 19),
+        (79, 20),
+        (83, 16),
+        (83, 17),
+        (101, 1),
+        (101, 7),
+        (102, 10),
+        (111, 2),
+        (111, 8),
+        (116, 11),
+        (120, 4),
+        (267, 13),
+        (268, 1),
+        (270, 22),
+        (271, 10),
+        (271, 19),
+        (272, 7),
+        (275, 16),
+        (276, 4),
+        (300, 1),
     ];
     assert_eq!(c2, want);
     let travelled: Vec<f64> = o
@@ -225,9 +259,52 @@ fn a_crowd_at_the_doors_decides_as_before_the_grid_lookup() {
         .map(|f| (f.travelled * 1e6).round() / 1e6)
         .collect();
     let want = [
-        1.482519, 1.496381, 2.103326, 1.525808, 1.412349, 2.103045, 1.482519, 1.496381, 2.103326,
-        1.482519, 1.496381, 2.059099, 0.169444, 0.169444, 3.568412, 0.169444, 0.169444, 3.702868,
-        0.169444, 0.169444, 3.702868, 0.169444, 0.169444, 3.702868,
+        3.441189, 2.025437, 2.852854, 3.140181, 1.481141, 2.365717, 3.441189, 2.025437, 2.852854,
+        3.407563, 2.0304, 2.894627, 2.716992, 1.512684, 4.465485, 2.570071, 1.513706, 4.736718,
+        2.713715, 1.513283, 5.658664, 2.716922, 1.513152, 4.767318,
     ];
     assert_eq!(travelled, want);
+}
+
+/// The door crowd for 95 s. Before robots gave way, all 24 stopped within about 4 s and never
+/// moved again (none arrived: robots leaving facing doors met nose to nose in the corridor, each
+/// waiting for the other's door). Now the wait-for cycles and face-offs resolve and robots
+/// merge into the corridor: 14 arrive, the last at 92.8 s, among them R6 and R18, the pair of
+/// that first deadlock. (Not all: ten still jam at the corridor's dead end, see the report.)
+#[test]
+fn a_door_crowd_unjams_where_robots_met_nose_to_nose() {
+    let s = door_crowd(95.0);
+    let floor = prepare(&s, None).unwrap().floor().clone();
+    let o = run(&s, None, &floor).unwrap();
+    let arrived: Vec<(u32, f64)> = o
+        .events()
+        .iter()
+        .filter(|e| e.kind.tag() == "arrived")
+        .map(|e| (e.robot[1..].parse().unwrap(), e.t))
+        .collect();
+    let mut who: Vec<u32> = arrived.iter().map(|a| a.0).collect();
+    who.sort_unstable();
+    assert_eq!(
+        who,
+        [1, 2, 3, 4, 5, 6, 8, 10, 13, 14, 15, 16, 17, 18],
+        "{arrived:?}"
+    );
+    // The first within 16 s, the last within 93 s.
+    let first = arrived.iter().map(|a| a.1).fold(f64::INFINITY, f64::min);
+    let last = arrived.iter().map(|a| a.1).fold(0.0, f64::max);
+    assert!(first < 16.0 && last < 93.0, "{first} {last}");
+    // R6 and R18 crossed the corridor both ways: each travelled more than the 6 m of its route.
+    assert!(o.figures[5].travelled > 6.0 && o.figures[17].travelled > 6.0);
+    // Giving way decides from the step's snapshot only: the first 20 s (robots give way from
+    // the first seconds on) give the same bytes on one and four threads.
+    let s = door_crowd(20.0);
+    let traces: Vec<Vec<u8>> = [1, 4]
+        .into_iter()
+        .map(|threads| {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build();
+            let o = pool.unwrap().install(|| run(&s, None, &floor).unwrap());
+            o.trace.unwrap()
+        })
+        .collect();
+    assert!(traces[0] == traces[1], "traces differ");
 }
