@@ -31,7 +31,13 @@
 //! [`crate::section_lines::THIN_M`] gives the segment it lies along, and the segments the
 //! areas above do not already hold (a solid's own side faces always lie in its section) are
 //! drawn [`crate::section_lines::LINE_WIDTH_M`] wide and added. Solids, and open meshes whose
-//! sides stand under faces they have in the slab, come out exactly as without lines.
+//! sides stand under faces they have in the slab, come out exactly as without lines. A mesh
+//! that is a closed surface by its indices ([`Mesh::edges_pair_up`]: extrusions, sweeps,
+//! boolean results, breps sharing their points; most walls, slabs, doors and windows) is not
+//! searched at all: a point of a face in the slab has next to it, on one side of the face, a
+//! point inside the surface at that height, which either is inside at the slab's bottom (the
+//! slice) or lies over a face crossing the slab between the two (the band), so every such face
+//! lies in the section and its line would be dropped.
 //!
 //! Sectioning is bounded ([`SectionBounds`]): a section whose outline has more edges than the
 //! boolean should be given, or that takes too long, is given up ([`CutOff`]) with a
@@ -178,6 +184,22 @@ fn section(
     slab: Option<(f64, f64)>,
     bounds: &SectionBounds,
 ) -> Result<Vec<Region>, CutOff> {
+    let closed = slab.is_some() && is_closed(mesh);
+    // Every face a closed surface (its edges pair up) has in the slab lies in its section,
+    // where its line would be dropped again: none is looked for.
+    let thin_lines = slab.is_some() && !(closed && mesh.edges_pair_up());
+    section_with(mesh, slab, closed, thin_lines, bounds)
+}
+
+/// [`section`], taking the slice at the slab's bottom when `closed` and looking for lines
+/// when `thin_lines`.
+fn section_with(
+    mesh: &Mesh,
+    slab: Option<(f64, f64)>,
+    closed: bool,
+    thin_lines: bool,
+    bounds: &SectionBounds,
+) -> Result<Vec<Region>, CutOff> {
     let deadline = bounds.deadline();
     let give_up = |limit: SectionLimit| CutOff {
         limit,
@@ -187,7 +209,6 @@ fn section(
         seconds: bounds.time_limit_s,
     };
     // A sum of oriented polygons per term: the slice at the slab's bottom, the band.
-    let closed = slab.is_some() && is_closed(mesh);
     let mut slice = WindingChain::new();
     let mut band = WindingChain::new();
     let mut lines = Lines::default();
@@ -223,7 +244,9 @@ fn section(
                 &b
             };
             let area = add_normalised(&mut band, inside);
-            lines.add_if_thin(inside, area);
+            if thin_lines {
+                lines.add_if_thin(inside, area);
+            }
         }
     }
     let edges = slice.len() + band.len();
@@ -704,5 +727,117 @@ pub(crate) mod tests {
         assert_eq!(s.len(), 2);
         assert!((total_area(&s) - 0.82).abs() < 1e-6, "{}", total_area(&s));
         assert!(s.iter().all(|r| !r.contains(DVec2::new(2.45, 0.1))));
+    }
+
+    #[test]
+    fn closed_surfaces_skip_the_line_search_and_section_the_same() {
+        use crate::boolean::Solid;
+        use crate::extrusion::extrude;
+        use crate::profile::ProfileArea;
+        let ring =
+            |c: &[(f64, f64)]| -> Vec<DVec2> { c.iter().map(|&(x, y)| DVec2::new(x, y)).collect() };
+        // An L-shaped column with a square hole, its sides leaning 0.3 mm over 3 m: every
+        // side's part in the band is thinner than a line.
+        let l_shape = ProfileArea {
+            outer: ring(&[
+                (0.0, 0.0),
+                (2.0, 0.0),
+                (2.0, 0.5),
+                (0.5, 0.5),
+                (0.5, 2.0),
+                (0.0, 2.0),
+            ]),
+            holes: vec![ring(&[(0.1, 0.1), (0.1, 0.3), (0.3, 0.3), (0.3, 0.1)])],
+        };
+        let leaning = extrude(&[l_shape], DVec3::new(0.0003, 0.0, 3.0)).unwrap();
+        // A round column of 64 sides.
+        let circle = (0..64)
+            .map(|k| {
+                let t = std::f64::consts::TAU * k as f64 / 64.0;
+                DVec2::new(0.2 * t.cos(), 0.2 * t.sin())
+            })
+            .collect();
+        let column = extrude(
+            &[ProfileArea {
+                outer: circle,
+                holes: Vec::new(),
+            }],
+            DVec3::new(0.0, 0.0, 2.5),
+        )
+        .unwrap();
+        // A wall less a door and a window (a boolean's result), two walls in one mesh.
+        let wall = Solid::new(&cuboid(DVec3::ZERO, DVec3::new(5.0, 0.2, 3.0))).unwrap();
+        let door = Solid::new(&cuboid(
+            DVec3::new(1.0, -0.1, -0.1),
+            DVec3::new(1.9, 0.3, 2.1),
+        ))
+        .unwrap();
+        let window = Solid::new(&cuboid(
+            DVec3::new(3.0, -0.1, 0.9),
+            DVec3::new(4.2, 0.3, 2.1),
+        ))
+        .unwrap();
+        let cut = wall
+            .difference(&door)
+            .unwrap()
+            .difference(&window)
+            .unwrap()
+            .mesh();
+        let mut two = cut.clone();
+        two.append(&cuboid(
+            DVec3::new(5.0, 0.0, 0.0),
+            DVec3::new(5.2, 4.0, 3.0),
+        ));
+        let bands = [(0.05, 1.0), (0.3, 0.6), (0.95, 2.0), (2.0, 2.6)];
+        for (name, mesh) in [
+            ("leaning", &leaning),
+            ("column", &column),
+            ("cut wall", &cut),
+            ("two walls", &two),
+            ("torus", &torus(2.0, 0.5, 24, 60)),
+        ] {
+            assert!(is_closed(mesh) && mesh.edges_pair_up(), "{name}");
+            for (z0, z1) in bands {
+                // The search finds the side faces (vertical or leaning) and drops every one.
+                let sides = mesh
+                    .triangles
+                    .iter()
+                    .map(|t| t.map(|i| mesh.positions[i as usize]))
+                    .filter(|t| {
+                        let (lo, hi) = z_range(t);
+                        lo < z1 && hi > z0 && projected_area(t).abs() < 1e-3
+                    })
+                    .count();
+                let searched = section_with(
+                    mesh,
+                    Some((z0, z1)),
+                    true,
+                    true,
+                    &SectionBounds::unbounded(),
+                );
+                let fast = mesh_section(mesh, z0, z1);
+                assert_eq!(searched.unwrap(), fast, "{name} {z0}..{z1}");
+                if (z0, z1) == (0.05, 1.0) && name != "torus" {
+                    assert!(sides >= 8 && !fast.is_empty(), "{name}: {sides}");
+                }
+            }
+        }
+        let area = |m: &Mesh| total_area(&mesh_section(m, 0.05, 1.0));
+        assert!(
+            (area(&cut) - (5.0 - 0.9) * 0.2).abs() < 1e-6,
+            "{}",
+            area(&cut)
+        );
+        let l_area = 2.0 * 0.5 + 0.5 * 1.5 - 0.04;
+        // Leaning 0.3 mm over 3 m: at most 0.1 mm more along the x-facing sides.
+        assert!((area(&leaning) - l_area).abs() < 5e-4, "{}", area(&leaning));
+        // The rail (posts and a sheet between them) is closed, but its edges do not pair up:
+        // the sheet's line is looked for and drawn.
+        let mut rail = cuboid(DVec3::new(-0.1, -0.05, 0.0), DVec3::new(0.0, 0.05, 1.2));
+        rail.append(&sheet(DVec2::ZERO, DVec2::new(3.0, 0.0), 0.0, 1.2));
+        assert!(is_closed(&rail) && !rail.edges_pair_up());
+        let w = crate::section_lines::LINE_WIDTH_M;
+        let want = 0.01 + (3.0 + w) * w - (w / 2.0) * w;
+        assert!((area(&rail) - want).abs() < 1e-6, "{}", area(&rail));
     }
 }

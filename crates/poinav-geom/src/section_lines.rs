@@ -12,8 +12,8 @@
 //! thinner than a cell conservatively), so no route crosses it.
 //!
 //! The vertical faces of a closed solid lie on or inside its exact section; which of them are
-//! lines is decided by [`crate::section`] (those outside the solid's section only), so solids
-//! are drawn as before.
+//! lines is decided by [`crate::section`] (those outside the solid's section only, `Cover`),
+//! so solids are drawn as before; a mesh whose edges pair up (a closed surface) is not searched.
 
 use glam::{DVec2, DVec3};
 use rustc_hash::FxHashSet;
