@@ -26,7 +26,7 @@ use serde::Deserialize;
 use crate::controller::{Command, Side, WallPd};
 use crate::events::{Event, EventKind};
 use crate::geometry::wrap_angle;
-use crate::give_way::{face_off, goes_first, has_priority, GiveWay, STOPPED_M_S};
+use crate::give_way::{face_off, goes_first, has_priority, GiveWay, Waiters, STOPPED_M_S};
 use crate::plan::Plan;
 use crate::poi_db::{Element, PoiDb, RoleSet};
 use crate::robot::Robot;
@@ -362,6 +362,9 @@ pub struct Env<'a> {
     pub step: u64,
     /// Time.
     pub t: f64,
+    /// Who waits for whom, made for this step from `robots` ([`Waiters::rebuild`]); `None`
+    /// looks every robot up in the robot grid instead (the same decisions).
+    pub waiters: Option<&'a Waiters>,
 }
 
 /// Where Algorithm 1 reports.
@@ -560,6 +563,75 @@ const BLOCKED_M: f64 = 0.02;
 /// How far (metres, centre to centre along each axis) a robot looks for robots that wait for
 /// it: the farthest a door wait or an A-1 stop reaches back in a queue at a door.
 const WAITERS_M: f64 = 2.0;
+
+/// The robot that robot `me` (stopped by a wait, or arrived: `arrived`, its wait `waits`) gives
+/// way to: of the robots within [`WAITERS_M`] waiting for it, the lowest index that tops a
+/// wait-for cycle through it (having arrived: any robot still on its way). The robots are those
+/// `waiters` lists for it, or without it every robot in the robot grid around it: the same
+/// ones, since a robot is listed near by the grid cells its box covers in both.
+fn waiter_to_give_way_to(
+    env: &Env<'_>,
+    me: usize,
+    arrived: bool,
+    waits: Option<(u32, Option<DoorIdx>)>,
+    waiters: Option<&Waiters>,
+) -> Option<usize> {
+    let pos = env.robots[me].state.pos;
+    let reach = DVec2::splat(WAITERS_M);
+    let (lo, hi) = (pos - reach, pos + reach);
+    let first = waits.map(|w| w.0 as usize);
+    let mut top: Option<usize> = None;
+    let mut consider = |p: u32| {
+        let p = p as usize;
+        if top.is_none_or(|t| p < t)
+            && env.robots[p].waits_for.is_some_and(|w| w.0 as usize == me)
+            && match (arrived, first) {
+                (true, _) => !env.robots[p].arrived,
+                (false, Some(f)) => cycle_tops(env, me, f, p),
+                (false, None) => false,
+            }
+        {
+            top = Some(p);
+        }
+        false
+    };
+    match waiters {
+        Some(w) => {
+            for &p in w.of(me) {
+                if env.world.robot_listed_near(p as usize, lo, hi) {
+                    consider(p);
+                }
+            }
+        }
+        None => {
+            env.world.any_robot_near(lo, hi, &mut consider);
+        }
+    }
+    top
+}
+
+/// The robot that goes first in a face-off with robot `me` (stopped), the lowest index of
+/// those: looked up in the robot grid over `waiters`' [`Waiters::face_off_box`] (the lane ahead
+/// of it), or without it over the square of [`crate::give_way::FACE_OFF_M`] around it.
+fn face_off_first(env: &Env<'_>, me: usize, waiters: Option<&Waiters>) -> Option<usize> {
+    let (lo, hi) = match waiters {
+        Some(w) => w.face_off_box(env, me),
+        None => {
+            let pos = env.robots[me].state.pos;
+            let reach = DVec2::splat(crate::give_way::FACE_OFF_M);
+            (pos - reach, pos + reach)
+        }
+    };
+    let mut first: Option<usize> = None;
+    env.world.any_robot_near(lo, hi, &mut |r| {
+        let r = r as usize;
+        if first.is_none_or(|f| r < f) && goes_first(env.robots, r, me) && face_off(env, me, r) {
+            first = Some(r);
+        }
+        false
+    });
+    first
+}
 
 /// True when robot `top` (which waits for `me`) has priority over `me` and over every robot
 /// on the wait-for chain from `me` (whose first hop is `first`, this step's) back to it.
@@ -902,40 +974,21 @@ pub fn perceive(
     // out of the way of any robot on its way that waits for it.
     let arrived = robot.arrived;
     if mind.give_way.is_none() && (arrived || mind.waits_for.is_some()) {
-        let reach = DVec2::splat(WAITERS_M);
-        let mut top: Option<usize> = None;
-        let first = mind.waits_for.map(|w| w.0 as usize);
-        env.world
-            .any_robot_near(pos - reach, pos + reach, &mut |p| {
-                let p = p as usize;
-                if top.is_none_or(|t| p < t)
-                    && env.robots[p].waits_for.is_some_and(|w| w.0 as usize == me)
-                    && match (arrived, first) {
-                        (true, _) => !env.robots[p].arrived,
-                        (false, Some(f)) => cycle_tops(env, me, f, p),
-                        (false, None) => false,
-                    }
-                {
-                    top = Some(p);
-                }
-                false
-            });
+        let top = waiter_to_give_way_to(env, me, arrived, mind.waits_for, env.waiters);
+        debug_assert_eq!(
+            top,
+            waiter_to_give_way_to(env, me, arrived, mind.waits_for, None),
+            "the waiters' index decides as the grid lookup"
+        );
         mind.give_way = top.and_then(|p| GiveWay::start(env, me, p, line_of(env, p)));
     }
     if mind.give_way.is_none() && robot.state.speed.abs() < STOPPED_M_S {
-        let reach = DVec2::splat(crate::give_way::FACE_OFF_M);
-        let mut first: Option<usize> = None;
-        env.world
-            .any_robot_near(pos - reach, pos + reach, &mut |r| {
-                let r = r as usize;
-                if first.is_none_or(|f| r < f)
-                    && goes_first(env.robots, r, me)
-                    && face_off(env, me, r)
-                {
-                    first = Some(r);
-                }
-                false
-            });
+        let first = face_off_first(env, me, env.waiters);
+        debug_assert_eq!(
+            first,
+            face_off_first(env, me, None),
+            "the face-off box decides as the square around the robot"
+        );
         mind.give_way = first.and_then(|o| GiveWay::start(env, me, o, line_of(env, o)));
     }
     let squeeze = mind.give_way.map_or(0.0, |g| {

@@ -233,6 +233,7 @@ fn c1_a_zone_carries_c2_while_a_robot_in_it_has_it() {
             behaviour: &v.behaviour,
             step: 0,
             t: 0.0,
+            waiters: None,
         };
         let mut observations = Vec::new();
         let mut sink = Sink {
@@ -572,6 +573,7 @@ fn door_waits_through_the_grid_equal_those_testing_every_robot() {
             behaviour: &behaviour,
             step: 0,
             t: 0.0,
+            waiters: None,
         };
         for me in 0..robots.len() {
             let held = (me % 4 == 0).then_some(DoorIdx::new(me / 4 % floor.doors.len()));

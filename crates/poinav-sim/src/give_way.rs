@@ -70,6 +70,72 @@ pub fn face_off(env: &Env<'_>, a: usize, b: usize) -> bool {
     in_lane(env.world.robot(a).ax, rel) && in_lane(env.world.robot(b).ax, -rel)
 }
 
+/// Per robot, the robots whose published wait ([`Robot::waits_for`]) is for it, ascending, and
+/// the largest half width and margin of any robot: made once per step, so that a robot finds
+/// who waits for it, and the robots that could stand in a face-off with it, without looking
+/// through its whole neighbourhood (in a jammed crowd most robots are stopped and wait).
+#[derive(Debug, Clone, Default)]
+pub struct Waiters {
+    start: Vec<u32>,
+    items: Vec<u32>,
+    max_half_width: f64,
+    max_margin: f64,
+}
+
+impl Waiters {
+    /// Remade from the robots' published waits (counting, no sort).
+    pub fn rebuild(&mut self, robots: &[Robot]) {
+        let n = robots.len();
+        self.start.clear();
+        self.start.resize(n + 1, 0);
+        for r in robots {
+            if let Some((w, _)) = r.waits_for {
+                self.start[w as usize + 1] += 1;
+            }
+        }
+        for i in 0..n {
+            self.start[i + 1] += self.start[i];
+        }
+        self.items.clear();
+        self.items.resize(self.start[n] as usize, 0);
+        let mut next = self.start[..n].to_vec();
+        for (p, r) in robots.iter().enumerate() {
+            if let Some((w, _)) = r.waits_for {
+                let k = &mut next[w as usize];
+                self.items[*k as usize] = p as u32;
+                *k += 1;
+            }
+        }
+        self.max_half_width = robots.iter().fold(0.0, |m, r| m.max(r.limits.half_width));
+        self.max_margin = robots.iter().fold(0.0, |m, r| m.max(r.limits.margin));
+    }
+
+    /// The robots waiting for robot `me`, ascending.
+    pub fn of(&self, me: usize) -> &[u32] {
+        match (self.start.get(me), self.start.get(me + 1)) {
+            (Some(&a), Some(&b)) => &self.items[a as usize..b as usize],
+            _ => &[],
+        }
+    }
+
+    /// The box holding the centre of every robot that can stand in a face-off with robot `me`
+    /// ([`face_off`]): ahead of it within [`FACE_OFF_M`], inside the widest lane any robot
+    /// makes with it.
+    pub fn face_off_box(&self, env: &Env<'_>, me: usize) -> (DVec2, DVec2) {
+        let r = &env.robots[me];
+        let lane = r.limits.half_width + self.max_half_width + r.limits.margin.max(self.max_margin);
+        let dir = env.world.robot(me).ax;
+        let (side, ahead) = (dir.perp() * lane, dir * FACE_OFF_M);
+        let p = r.state.pos;
+        let corners = [p - side, p + side, p + ahead - side, p + ahead + side];
+        corners
+            .iter()
+            .fold((DVec2::INFINITY, DVec2::NEG_INFINITY), |(lo, hi), &c| {
+                (lo.min(c), hi.max(c))
+            })
+    }
+}
+
 /// A robot's step aside for another robot with priority.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct GiveWay {

@@ -441,6 +441,8 @@ pub struct Sim<'f> {
     step_events: Vec<Vec<Event>>,
     touching: Vec<Vec<Owner>>,
     arrived: Vec<bool>,
+    /// Who waits for whom this step (remade before the robots perceive).
+    waiters: crate::give_way::Waiters,
     readings: Vec<Reading>,
     perceptions: Vec<Perception>,
     /// Each robot's events and clearance measurement of its perception in this step (kept for
@@ -591,6 +593,7 @@ impl<'f> Sim<'f> {
             step_events: Vec::new(),
             touching: vec![Vec::new(); n],
             arrived: vec![false; n],
+            waiters: Default::default(),
             readings: Vec::with_capacity(n),
             perceptions: Vec::with_capacity(n),
             perceived: Vec::new(),
@@ -738,6 +741,7 @@ impl<'f> Sim<'f> {
     /// robot perceives its reading while it is in the cache, and the pool is called once less
     /// per step), then C-1 at the zone level.
     fn sense_and_perceive(&mut self, t: f64) {
+        self.waiters.rebuild(&self.robots);
         let env = Env {
             floor: self.floor,
             nav: &self.nav,
@@ -746,6 +750,7 @@ impl<'f> Sim<'f> {
             behaviour: &self.opts.behaviour,
             step: self.step,
             t,
+            waiters: Some(&self.waiters),
         };
         // Robot `i` perceives into its perception, its events and its clearance measurement.
         let run = |i: usize,

@@ -206,6 +206,7 @@ impl<'f> View<'f> {
             behaviour: &self.behaviour,
             step: 0,
             t: 0.0,
+            waiters: None,
         };
         let mut observations = Vec::new();
         let mut sink = Sink {
@@ -227,6 +228,7 @@ impl View<'_> {
             behaviour: &self.behaviour,
             step: 0,
             t: 0.0,
+            waiters: None,
         };
         let mut observations = Vec::new();
         let mut sink = Sink {

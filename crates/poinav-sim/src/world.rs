@@ -747,6 +747,17 @@ impl World {
         false
     }
 
+    /// True when robot `i` is one [`World::any_robot_near`] offers for `lo`-`hi`: its box's
+    /// cells (as the robot grid was last built) meet the slack-widened cells of the box.
+    pub fn robot_listed_near(&self, i: usize, lo: DVec2, hi: DVec2) -> bool {
+        debug_assert!(!self.stale, "the robot grid lists the boxes' cells");
+        let s = DVec2::splat(self.slack);
+        let (x0, y0) = self.cell_of(lo - s);
+        let (x1, y1) = self.cell_of(hi + s);
+        let [a0, b0, a1, b1] = self.rects[i].map(|v| v as usize);
+        a0 <= x1 && a1 >= x0 && b0 <= y1 && b1 >= y0
+    }
+
     /// Robots other than `skip` whose box's bounding box comes within the slack of `lo`-`hi`,
     /// ascending. Found through their (slack-widened) cells: the grid is rebuilt once per step
     /// while boxes move within it, and a robot whose box is now farther than the slack could
