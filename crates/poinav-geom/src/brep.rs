@@ -134,9 +134,9 @@ impl FaceMesher {
 }
 
 /// The mesh of an `IfcFacetedBrep` (outer shell and, for `...WithVoids`, the void shells),
-/// an `IfcShellBasedSurfaceModel` or an `IfcFaceBasedSurfaceModel` (faces on surfaces by
-/// [`crate::advanced_brep::surface_model`]), in metres; true when it is a solid (a brep)
-/// rather than a surface model.
+/// an `IfcShellBasedSurfaceModel` or an `IfcFaceBasedSurfaceModel` (faces on surfaces or
+/// bounded by edge loops by [`crate::advanced_brep::surface_model`]), in metres; true when
+/// it is a solid (a brep) rather than a surface model.
 pub fn face_mesh(item: Entity<'_>, units: &Units) -> Result<(Mesh, bool), GeomError> {
     if !item.is_a("IfcManifoldSolidBrep") && crate::advanced_brep::has_face_surfaces(item) {
         return Ok((crate::advanced_brep::surface_model(item, units)?, false));
