@@ -2,7 +2,8 @@
 //! their rational subtypes; IFC2X3's `IfcBezierCurve` and `IfcRationalBezierCurve`, whose
 //! knots are implied: Bezier pieces of its degree end to end): knot vectors from knots and
 //! multiplicities, basis functions by
-//! the Cox-de Boor recursion, points from homogeneous control points (weights), and the
+//! the Cox-de Boor recursion, points from homogeneous control points (weights; a surface
+//! closed along u or v repeats with its domain's length as period), and the
 //! curve's points sampled by the chord rule ([`crate::chord_rule`]).
 
 use glam::{DVec3, DVec4};
@@ -244,6 +245,9 @@ pub struct Surface {
     /// The basis along v.
     pub v: Basis,
     points: Vec<Vec<DVec4>>,
+    /// Whether the surface closes on itself along u and along v (`UClosed`, `VClosed`):
+    /// then it repeats with its domain's length as period.
+    closed: [bool; 2],
 }
 
 impl Surface {
@@ -267,11 +271,47 @@ impl Surface {
                 )
             })
             .collect::<Option<Vec<_>>>()?;
-        Some(Surface { u, v, points: rows })
+        Some(Surface {
+            u,
+            v,
+            points: rows,
+            closed: [false; 2],
+        })
     }
 
-    /// The point at `(u, v)`.
+    /// The same surface, closed on itself along u and/or v.
+    pub fn closed(mut self, u: bool, v: bool) -> Surface {
+        self.closed = [u, v];
+        self
+    }
+
+    /// The period along u and along v: the domain's length where the surface is closed.
+    pub fn periods(&self) -> [Option<f64>; 2] {
+        let period = |b: &Basis, closed: bool| {
+            let (lo, hi) = b.domain();
+            closed.then_some(hi - lo)
+        };
+        [
+            period(&self.u, self.closed[0]),
+            period(&self.v, self.closed[1]),
+        ]
+    }
+
+    /// The point at `(u, v)`; along a closed direction any parameter, taken modulo the
+    /// period.
     pub fn point(&self, u: f64, v: f64) -> DVec3 {
+        let wrap = |b: &Basis, closed: bool, t: f64| {
+            let (lo, hi) = b.domain();
+            if closed && !(lo..=hi).contains(&t) {
+                lo + (t - lo).rem_euclid(hi - lo)
+            } else {
+                t
+            }
+        };
+        let (u, v) = (
+            wrap(&self.u, self.closed[0], u),
+            wrap(&self.v, self.closed[1], v),
+        );
         let (su, sv) = (self.u.span(u), self.v.span(v));
         let (nu, nv) = (self.u.functions(su, u), self.v.functions(sv, v));
         let (p, q) = (self.u.degree, self.v.degree);
@@ -439,12 +479,14 @@ pub fn surface(e: Entity<'_>, s: f64) -> Result<Surface, GeomError> {
     let u = Basis::new(p, knots(&e, "UKnots", "UMultiplicities")?, nu);
     let v = Basis::new(q, knots(&e, "VKnots", "VMultiplicities")?, nv);
     let bad = || degenerate(&e, "degrees, knots, control points or weights do not fit");
+    let closed = |name| e.get(name).and_then(|v| v.as_enum()) == Some("T");
     Surface::new(
         u.ok_or_else(bad)?,
         v.ok_or_else(bad)?,
         &pts,
         weights.as_deref(),
     )
+    .map(|b| b.closed(closed("UClosed"), closed("VClosed")))
     .ok_or_else(bad)
 }
 

@@ -5,7 +5,7 @@
 //! (rational too, [`crate::bspline`]), `IfcSurfaceOfLinearExtrusion` of a profile's curve
 //! (u the length along the curve's polyline, v along the sweep) and `IfcSurfaceOfRevolution`
 //! (u the angle, v the length along the curve). Angles (and closed
-//! swept curves) are periodic; normals `S_u x S_v` point away from the axis or centre, as
+//! swept curves, and B-spline surfaces along a closed direction) are periodic; normals `S_u x S_v` point away from the axis or centre, as
 //! IFC's do.
 
 use std::f64::consts::TAU;
@@ -265,7 +265,8 @@ impl Surface {
             Surface::Extrusion(x) if x.closed => [Some(x.total()), None],
             Surface::Revolution(r) if r.0.closed => [Some(TAU), Some(r.0.total())],
             Surface::Revolution(_) => [Some(TAU), None],
-            Surface::Plane | Surface::BSpline(_) | Surface::Extrusion(_) => [None, None],
+            Surface::BSpline(b) => b.periods(),
+            Surface::Plane | Surface::Extrusion(_) => [None, None],
         }
     }
 
@@ -409,11 +410,17 @@ impl Surface {
 }
 
 /// The parameters of the point of `b` nearest `p`: the nearest of a grid (or `near`), then
-/// Gauss-Newton steps, kept within the domain.
+/// Gauss-Newton steps, kept within the domain (free to cross it where the surface is closed).
 fn project(b: &bspline::Surface, p: DVec3, near: Option<DVec2>) -> DVec2 {
     let (u0, u1) = b.u.domain();
     let (v0, v1) = b.v.domain();
-    let clamp = |x: DVec2| DVec2::new(x.x.clamp(u0, u1), x.y.clamp(v0, v1));
+    let bounds = |lo: f64, hi: f64, period: Option<f64>| match period {
+        Some(_) => (f64::NEG_INFINITY, f64::INFINITY),
+        None => (lo, hi),
+    };
+    let [pu, pv] = b.periods();
+    let ((cu0, cu1), (cv0, cv1)) = (bounds(u0, u1, pu), bounds(v0, v1, pv));
+    let clamp = |x: DVec2| DVec2::new(x.x.clamp(cu0, cu1), x.y.clamp(cv0, cv1));
     let n = 24;
     let mut best = (f64::INFINITY, DVec2::new(u0, v0));
     let mut consider = |uv: DVec2| {
@@ -437,10 +444,10 @@ fn project(b: &bspline::Surface, p: DVec3, near: Option<DVec2>) -> DVec2 {
     let h = 1e-7 * ((u1 - u0) + (v1 - v0));
     for _ in 0..30 {
         let s = b.point(uv.x, uv.y);
-        let du = (b.point((uv.x + h).min(u1), uv.y) - b.point((uv.x - h).max(u0), uv.y))
-            / ((uv.x + h).min(u1) - (uv.x - h).max(u0));
-        let dv = (b.point(uv.x, (uv.y + h).min(v1)) - b.point(uv.x, (uv.y - h).max(v0)))
-            / ((uv.y + h).min(v1) - (uv.y - h).max(v0));
+        let du = (b.point((uv.x + h).min(cu1), uv.y) - b.point((uv.x - h).max(cu0), uv.y))
+            / ((uv.x + h).min(cu1) - (uv.x - h).max(cu0));
+        let dv = (b.point(uv.x, (uv.y + h).min(cv1)) - b.point(uv.x, (uv.y - h).max(cv0)))
+            / ((uv.y + h).min(cv1) - (uv.y - h).max(cv0));
         let r = p - s;
         let (a, c, d) = (du.dot(du), du.dot(dv), dv.dot(dv));
         let det = a * d - c * c;
