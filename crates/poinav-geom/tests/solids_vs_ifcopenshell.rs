@@ -1,5 +1,5 @@
 //! Revolved and tapered solids, CSG primitives and trees, advanced breps (planar,
-//! cylindrical, toroidal, B-spline (closed along v too), extrusion and revolution faces,
+//! cylindrical, toroidal, B-spline (closed along u or v too), extrusion and revolution faces,
 //! rational too, seams,
 //! surface curves as edges, a
 //! void), a polygonal face set with voids and a B-spline profile, written by IfcOpenShell's
@@ -25,7 +25,7 @@ const BOX_TOLERANCE: f64 = 0.01;
 const VOLUME_TOLERANCE: f64 = 0.01;
 
 /// The cases the script writes.
-const CASES: usize = 27;
+const CASES: usize = 28;
 
 /// Undirected edges not used exactly once each way, vertices welded by exact position.
 fn open_edges(m: &Mesh) -> usize {
