@@ -1,8 +1,6 @@
 //! Revolved and tapered solids, CSG primitives and trees, advanced breps (planar,
-//! cylindrical, toroidal, B-spline (closed along u or v too), extrusion and revolution faces,
-//! rational too, seams,
-//! surface curves as edges, a
-//! void), a polygonal face set with voids and a B-spline profile, written by IfcOpenShell's
+//! cylindrical, toroidal, B-spline (closed along u or v too), extrusion and revolution
+//! faces, rational too, seams, surface curves as edges, a void), a polygonal face set with voids and a B-spline profile, written by IfcOpenShell's
 //! API (`tests/ifcos/author_solids.py`, one Python run that also meshes them with
 //! IfcOpenShell) and meshed by poinav: every case is meshed, closed (every edge shared by
 //! exactly two triangles running it both ways), its bounding box within 1 cm of
