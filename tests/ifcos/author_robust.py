@@ -21,6 +21,8 @@ along y, all in one storey:
   others), under a union, and under a clipping (the half-space then heads the list and
   IfcOpenShell keeps what the next solid has in the half-space's material);
 - a face of a surface model drawn as a star in one stroke (401 points, {401/2}): filled;
+- a face of a surface model bounded by an IfcEdgeLoop of two half circles (a disc);
+- a face with two outer bounds (invalid): both meshed;
 - an IfcMirroredProfileDef (an L mirrored about its y axis) and the same as an
   IfcDerivedProfileDef with a mirroring operator;
 - an IfcCurveBoundedPlane (a 3 x 2 m rectangle with a 1 x 0.5 m hole, on a plane tilted
@@ -158,6 +160,28 @@ star_face = [pt(math.cos(2 * math.pi * (2 * i % n) / n), math.sin(2 * math.pi * 
 loop = f.createIfcPolyLoop(star_face)
 face = f.createIfcFace([f.createIfcFaceOuterBound(loop, True)])
 case("star_face_401", [f.createIfcShellBasedSurfaceModel([f.createIfcOpenShell([face])])], kind="SurfaceModel")
+
+# --- A face of a surface model bounded by an IfcEdgeLoop: two IfcEdgeCurves, each half of
+# one IfcCircle of radius 1 (as IfcOpenShell's test/input/faces.ifc writes a disc).
+circle = f.createIfcCircle(ax(), 1.0)
+east, west = f.createIfcVertexPoint(pt(1, 0, 0)), f.createIfcVertexPoint(pt(-1, 0, 0))
+halves = [f.createIfcEdgeCurve(east, west, circle, True), f.createIfcEdgeCurve(west, east, circle, True)]
+edge_loop = f.createIfcEdgeLoop([f.createIfcOrientedEdge(None, None, h, True) for h in halves])
+disc = f.createIfcFace([f.createIfcFaceOuterBound(edge_loop, True)])
+case("edge_loop_disc_face", [f.createIfcFaceBasedSurfaceModel([f.createIfcConnectedFaceSet([disc])])], kind="SurfaceModel")
+
+# --- A face with two outer bounds (invalid, as IfcOpenShell's test/input/faces.ifc writes
+# one): two 0.3 x 0.8 m rectangles side by side, the second bound reversed; IfcOpenShell
+# meshes both (it gives no shape when one of them has a hole).
+def square_loop(x0, y0, x1, y1):
+    return f.createIfcPolyLoop([pt(x0, y0, 0.0), pt(x1, y0, 0.0), pt(x1, y1, 0.0), pt(x0, y1, 0.0)])
+
+
+two_outer = f.createIfcFace([
+    f.createIfcFaceOuterBound(square_loop(-0.4, -0.4, -0.1, 0.4), True),
+    f.createIfcFaceOuterBound(square_loop(0.1, -0.4, 0.4, 0.4), False),
+])
+case("two_outer_bounds_face", [f.createIfcFaceBasedSurfaceModel([f.createIfcConnectedFaceSet([two_outer])])], kind="SurfaceModel")
 
 # --- Mirrored profiles.
 ell = f.createIfcArbitraryClosedProfileDef(

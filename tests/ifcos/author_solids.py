@@ -23,8 +23,10 @@ placed at its own spot, so placements count), all on one storey:
   through a seam edge; a cylinder without a seam whose circles are IfcIndexedPolyCurves of
   arcs (OpenBuildings' way: half-circle edges, one with SameSense false, and a closed edge
   whose vertex is not the curve's start); the same cylinder in B-splines only (its side a
-  rational B-spline surface closed in u, bounded by two closed B-spline circles); a torus bounded by its two seams; a box with a
-  box-shaped void (IfcAdvancedBrepWithVoids);
+  rational B-spline surface closed in u, bounded by two closed B-spline circles); a torus
+  bounded by its two seams; a box with a box-shaped void (IfcAdvancedBrepWithVoids); a tube
+  whose side is a B-spline surface closed along v (periodic knots), bounded through a seam
+  edge and two closed B-spline curves, and one closed along u bounded by the two curves alone;
 - an IfcPolygonalFaceSet with IfcIndexedPolygonalFaceWithVoids (a square tube);
 - an extruded profile bounded by a closed rational B-spline circle.
 
@@ -431,6 +433,68 @@ def closed_bspline_cylinder():
 
 
 case("advanced closed bspline cylinder", [closed_bspline_cylinder()], "AdvancedBrep", volume=math.pi * 0.25 * 1.2)
+
+
+def periodic_tube(around_u=False):
+    """h = 1.2: the side face a B-spline surface closed along v (a uniform cubic around the
+    diamond (0.6, 0), (0, 0.6), (-0.6, 0), (0, -0.6), its first three control points repeated,
+    as Geometry Gym writes a basin's bowl), bounded by a seam used both ways and two such
+    closed B-spline curves; flat caps. With `around_u` the surface is closed along u instead
+    and bounded by the two closed curves alone (no seam edge). Returns the brep, its
+    section's area and its box."""
+    ring = [(0.6, 0.0), (0.0, 0.6), (-0.6, 0.0), (0.0, -0.6)]
+    ring += ring[:3]
+    knots = [float(k) for k in range(-7, 4)]
+
+    def ring_curve(z):
+        cps = [pt(x, y, z) for x, y in ring]
+        return f.createIfcBSplineCurveWithKnots(3, cps, "UNSPECIFIED", True, False, [1] * 11, knots, "UNSPECIFIED")
+
+    # The curve at the domain's start (t = -4): (Q0 + 4 Q1 + Q2) / 6.
+    x0, y0 = [(a + 4 * b + c) / 6 for a, b, c in zip(ring[0], ring[1], ring[2])]
+    b = Brep()
+    b.vertex("S0", x0, y0, 0)
+    b.vertex("S1", x0, y0, 1.2)
+    b.edge("c0", "S0", "S0", ring_curve(0.0))
+    b.edge("c1", "S1", "S1", ring_curve(1.2))
+    b.edge("seam", "S0", "S1")
+    if around_u:
+        # Around along u, up along v: the normal (u x v) points out.
+        cols = [[pt(x, y, z) for z in (0.0, 1.2)] for x, y in ring]
+        side = f.createIfcBSplineSurfaceWithKnots(3, 1, cols, "UNSPECIFIED", True, False, False, [1] * 11, [2, 2], knots, [0.0, 1.0], "UNSPECIFIED")
+        side_face = b.face(side, ["c0"], ["-c1"])
+    else:
+        rows = [[pt(x, y, z) for x, y in ring] for z in (0.0, 1.2)]
+        side = f.createIfcBSplineSurfaceWithKnots(1, 3, rows, "UNSPECIFIED", False, True, False, [2, 2], [1] * 11, [0.0, 1.0], knots, "UNSPECIFIED")
+        # The surface's normal (along u x v: up x around) points in: SameSense false.
+        side_face = b.face(side, ["c0", "seam", "-c1", "-seam"], same_sense=False)
+    faces = [
+        side_face,
+        b.face(plane(0, 0, 0, (0, 0, -1), (1, 0, 0)), ["-c0"]),
+        b.face(plane(0, 0, 1.2, (0, 0, 1), (1, 0, 0)), ["c1"]),
+    ]
+    # The section, sampled finely: four uniform cubic segments.
+    t = np.linspace(0.0, 1.0, 4001)[:-1]
+    basis = np.stack([(1 - t) ** 3, 3 * t**3 - 6 * t**2 + 4, -3 * t**3 + 3 * t**2 + 3 * t + 1, t**3]) / 6
+    q = np.array(ring)
+    section = np.concatenate([basis.T @ q[i:i + 4] for i in range(4)])
+    area = 0.5 * abs(np.dot(section[:, 0], np.roll(section[:, 1], -1)) - np.dot(section[:, 1], np.roll(section[:, 0], -1)))
+    lo, hi = section.min(axis=0), section.max(axis=0)
+    box = ((lo[0], lo[1], 0.0), (hi[0], hi[1], 1.2))
+    return f.createIfcAdvancedBrep(f.createIfcClosedShell(faces)), area, box
+
+
+tube, tube_area, tube_box = periodic_tube()
+case("advanced periodic bspline tube", [tube], "AdvancedBrep", volume=tube_area * 1.2, box=tube_box)
+tube, tube_area, tube_box = periodic_tube(around_u=True)
+case(
+    "advanced periodic bspline tube, no seam",
+    [tube],
+    "AdvancedBrep",
+    volume=tube_area * 1.2,
+    box=tube_box,
+    ifcos_wrong="IfcOpenShell 0.9 turns its side in: no consistent closed solid",
+)
 
 
 def torus():

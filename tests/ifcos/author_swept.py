@@ -29,7 +29,8 @@ IfcSurfaceCurveSweptAreaSolid (on a plane, a cylinder and a surface of linear ex
 IfcFixedReferenceSweptAreaSolid (with a Position) and the
 IFC4X3 IfcDirectrixDerivedReferenceSweptAreaSolid; an IfcArbitraryOpenProfileDef on a
 trimmed polyline and an IfcCenterLineProfileDef, both extruded; rolled I, L and U profiles
-with root fillets and edge radii and a cold-formed C with rounded bends, extruded; in IFC2X3, a bent bar as
+with root fillets and edge radii and a cold-formed C with rounded bends, extruded; trapezia
+whose top line reaches past the bottom one (their bounding box is centred); in IFC2X3, a bent bar as
 Revit writes reinforcement, a crane rail (IfcCraneRailAShapeProfileDef) extruded and a
 profile bounded by an IfcBezierCurve (IfcOpenShell 0.9 draws its chord: compared with a
 reference).
@@ -230,6 +231,14 @@ def author_ifc4(w):
     ]
     for k, (cls, name, profile) in enumerate(rolled):
         w.element(cls, name, f.createIfcExtrudedAreaSolid(profile, w.axis(2 * k, 40, 0), w.d(0, 0, 1), 2.0),
+                  "SweptSolid")
+    # Trapezia whose top line reaches past the bottom one, to the left (negative TopXOffset)
+    # and to the right: the schema centres the bounding box, not the bottom line, on the
+    # position (0.1 m apart here).
+    trapezia = [("trapezium_left", 0.5, 0.6, -0.2), ("trapezium_right", 0.4, 0.3, 0.3)]
+    for k, (name, bottom, top, offset) in enumerate(trapezia):
+        profile = f.createIfcTrapeziumProfileDef("AREA", None, None, bottom, top, 0.25, offset)
+        w.element("IfcColumn", name, f.createIfcExtrudedAreaSolid(profile, w.axis(2 * k, 44, 0), w.d(0, 0, 1), 1.0),
                   "SweptSolid")
 
 

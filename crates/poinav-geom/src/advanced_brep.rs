@@ -45,7 +45,8 @@ pub fn advanced_brep(item: Entity<'_>, units: &Units) -> Result<Mesh, GeomError>
 }
 
 /// True when a surface model (`IfcShellBasedSurfaceModel`, `IfcFaceBasedSurfaceModel`) has
-/// faces on surfaces (`IfcFaceSurface`, `IfcAdvancedFace`), which [`surface_model`] meshes.
+/// faces on surfaces (`IfcFaceSurface`, `IfcAdvancedFace`) or faces bounded by edge loops
+/// (`IfcEdgeLoop`, a circle's edges say), which [`surface_model`] meshes.
 pub fn has_face_surfaces(item: Entity<'_>) -> bool {
     let shells = [item.get_refs("SbsmBoundary"), item.get_refs("FbsmFaces")].concat();
     // Exporters do not mix face kinds in one shell: its first face tells.
@@ -56,7 +57,12 @@ pub fn has_face_surfaces(item: Entity<'_>) -> bool {
                     .and_then(|l| l.first().and_then(|f| f.as_ref_id()))
             })
             .and_then(|id| sh.model().entity(id))
-            .is_some_and(|f| f.is_a("IfcFaceSurface"))
+            .is_some_and(|f| {
+                f.is_a("IfcFaceSurface")
+                    || f.get_refs("Bounds")
+                        .iter()
+                        .any(|b| b.get_ref("Bound").is_some_and(|lp| lp.is_a("IfcEdgeLoop")))
+            })
     })
 }
 

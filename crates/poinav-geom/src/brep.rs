@@ -1,11 +1,12 @@
 //! Boundary representations made of `IfcFace`s: `IfcFacetedBrep` (and `...WithVoids`),
 //! `IfcShellBasedSurfaceModel` and `IfcFaceBasedSurfaceModel`, as triangle meshes. Faces are
-//! bounded by `IfcPolyLoop`s; inner bounds become holes; vertices are shared through the
+//! bounded by `IfcPolyLoop`s; inner bounds become holes (several outer bounds, invalid, each
+//! a face of its own); vertices are shared through the
 //! `IfcCartesianPoint` they are written with, so a closed shell gives a closed mesh.
 
 use rustc_hash::FxHashMap;
 
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 use poinav_ifc::{Entity, EntityId};
 
 use crate::cartesian_point::point3;
@@ -55,7 +56,7 @@ impl FaceMesher {
         if self.faces > MAX_FACES {
             return Err(crate::error::degenerate(&face, "too many faces"));
         }
-        let mut loops: Vec<(bool, Vec<EntityId>, Vec<DVec3>)> = Vec::new();
+        let mut loops: Vec<FaceLoop> = Vec::new();
         for bound in face.get_refs("Bounds") {
             let lp = bound
                 .get_ref("Bound")
@@ -87,6 +88,31 @@ impl FaceMesher {
         if loops.is_empty() {
             return Ok(());
         }
+        // Several outer bounds (invalid, but written): each a face of its own with the inner
+        // bounds inside it, as IfcOpenShell meshes them.
+        let first_outer = loops.iter().position(|l| l.0);
+        let normal = first_outer.and_then(|i| newell_normal(&loops[i].2).try_normalize());
+        if let (Some(normal), true) = (normal, loops.iter().filter(|l| l.0).count() > 1) {
+            let u = normal.any_orthonormal_vector();
+            let v = normal.cross(u);
+            let flat = |p: &DVec3| DVec2::new(p.dot(u), p.dot(v));
+            let (outers, inner): (Vec<FaceLoop>, Vec<FaceLoop>) =
+                loops.into_iter().partition(|l| l.0);
+            let mut inner: Vec<Option<FaceLoop>> = inner.into_iter().map(Some).collect();
+            for outer in outers {
+                let ring: Vec<DVec2> = outer.2.iter().map(flat).collect();
+                let holes: Vec<FaceLoop> = inner
+                    .iter_mut()
+                    .filter(|h| {
+                        h.as_ref()
+                            .is_some_and(|h| crate::polygon::contains(&ring, flat(&h.2[0])))
+                    })
+                    .filter_map(Option::take)
+                    .collect();
+                self.polygon(outer, holes);
+            }
+            return Ok(());
+        }
         // The outer bound; when none is marked, the loop enclosing the most area.
         let outer = loops.iter().position(|l| l.0).unwrap_or_else(|| {
             (0..loops.len())
@@ -97,9 +123,15 @@ impl FaceMesher {
                 .unwrap_or(0)
         });
         let outer_loop = loops.swap_remove(outer);
+        self.polygon(outer_loop, loops);
+        Ok(())
+    }
+
+    /// Adds one face's polygon: its outer loop and the loops that are its holes.
+    fn polygon(&mut self, outer_loop: FaceLoop, loops: Vec<FaceLoop>) {
         let holes: Vec<Vec<DVec3>> = loops.iter().map(|l| l.2.clone()).collect();
         let Some((added, tris)) = triangulate_3d_resolving(&outer_loop.2, &holes) else {
-            return Ok(());
+            return;
         };
         let ids: Vec<EntityId> = std::iter::once(&outer_loop)
             .chain(loops.iter())
@@ -129,14 +161,16 @@ impl FaceMesher {
                 .map(|t| t.map(|i| index[i as usize]))
                 .filter(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2]),
         );
-        Ok(())
     }
 }
 
+/// One bound of a face: whether it is the outer one, its points' `#id`s and the points.
+type FaceLoop = (bool, Vec<EntityId>, Vec<DVec3>);
+
 /// The mesh of an `IfcFacetedBrep` (outer shell and, for `...WithVoids`, the void shells),
-/// an `IfcShellBasedSurfaceModel` or an `IfcFaceBasedSurfaceModel` (faces on surfaces by
-/// [`crate::advanced_brep::surface_model`]), in metres; true when it is a solid (a brep)
-/// rather than a surface model.
+/// an `IfcShellBasedSurfaceModel` or an `IfcFaceBasedSurfaceModel` (faces on surfaces or
+/// bounded by edge loops by [`crate::advanced_brep::surface_model`]), in metres; true when
+/// it is a solid (a brep) rather than a surface model.
 pub fn face_mesh(item: Entity<'_>, units: &Units) -> Result<(Mesh, bool), GeomError> {
     if !item.is_a("IfcManifoldSolidBrep") && crate::advanced_brep::has_face_surfaces(item) {
         return Ok((crate::advanced_brep::surface_model(item, units)?, false));
@@ -169,4 +203,42 @@ pub fn face_mesh(item: Entity<'_>, units: &Units) -> Result<(Mesh, bool), GeomEr
         return Err(unsupported(&item, "face-based representation item"));
     };
     Ok((m.finish(), solid))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn each_of_several_outer_bounds_is_a_face_with_the_holes_inside_it() {
+        // Two 0.3 x 0.8 m rectangles as outer bounds of one face (invalid), a 0.1 x 0.2 m hole
+        // in the first: 0.24 - 0.02 + 0.24 m2.
+        let m = crate::test_model::ifc4(
+            "#1=IFCCARTESIANPOINT((-0.4,-0.4,0.));#2=IFCCARTESIANPOINT((-0.1,-0.4,0.));\
+             #3=IFCCARTESIANPOINT((-0.1,0.4,0.));#4=IFCCARTESIANPOINT((-0.4,0.4,0.));\
+             #5=IFCPOLYLOOP((#1,#2,#3,#4));\
+             #6=IFCCARTESIANPOINT((-0.3,-0.1,0.));#7=IFCCARTESIANPOINT((-0.2,-0.1,0.));\
+             #8=IFCCARTESIANPOINT((-0.2,0.1,0.));#9=IFCCARTESIANPOINT((-0.3,0.1,0.));\
+             #10=IFCPOLYLOOP((#6,#7,#8,#9));\
+             #11=IFCCARTESIANPOINT((0.1,-0.4,0.));#12=IFCCARTESIANPOINT((0.4,-0.4,0.));\
+             #13=IFCCARTESIANPOINT((0.4,0.4,0.));#14=IFCCARTESIANPOINT((0.1,0.4,0.));\
+             #15=IFCPOLYLOOP((#11,#12,#13,#14));\
+             #16=IFCFACEOUTERBOUND(#5,.T.);#17=IFCFACEBOUND(#10,.F.);\
+             #18=IFCFACEOUTERBOUND(#15,.T.);#19=IFCFACE((#16,#17,#18));\
+             #20=IFCCONNECTEDFACESET((#19));#21=IFCFACEBASEDSURFACEMODEL((#20));",
+        );
+        let item = m.entity(EntityId(21)).unwrap();
+        let (mesh, solid) = face_mesh(item, &Units::SI).unwrap();
+        assert!(!solid);
+        assert!((mesh.area() - 0.46).abs() < 1e-9, "{}", mesh.area());
+        // Nothing of the hole is covered: its centre is off every triangle.
+        let centre = DVec3::new(-0.25, 0.0, 0.0);
+        let covered = mesh.triangles.iter().any(|t| {
+            let [a, b, c] = t.map(|i| mesh.positions[i as usize].truncate());
+            let side = |p: DVec2, q: DVec2| (q - p).perp_dot(centre.truncate() - p);
+            let s = [side(a, b), side(b, c), side(c, a)];
+            s.iter().all(|&x| x > 0.0) || s.iter().all(|&x| x < 0.0)
+        });
+        assert!(!covered);
+    }
 }

@@ -2,7 +2,8 @@
 //! their rational subtypes; IFC2X3's `IfcBezierCurve` and `IfcRationalBezierCurve`, whose
 //! knots are implied: Bezier pieces of its degree end to end): knot vectors from knots and
 //! multiplicities, basis functions by
-//! the Cox-de Boor recursion, points from homogeneous control points (weights), and the
+//! the Cox-de Boor recursion, points from homogeneous control points (weights; a surface
+//! closed along u or v repeats with its domain's length as period), and the
 //! curve's points sampled by the chord rule ([`crate::chord_rule`]).
 
 use glam::{DVec3, DVec4};
@@ -245,7 +246,9 @@ pub struct Surface {
     pub v: Basis,
     points: Vec<Vec<DVec4>>,
     /// Whether the surface closes on itself along u and along v: its first and last rows
-    /// (columns) of control points are the same points (OpenBuildings' cylinders).
+    /// (columns) of control points are the same points (OpenBuildings' cylinders), or the
+    /// file says so (`UClosed`, `VClosed`, [`Surface::closed`]); then it repeats with its
+    /// domain's length as period.
     closed: [bool; 2],
 }
 
@@ -287,6 +290,13 @@ impl Surface {
             points: rows,
             closed: [closed_u, closed_v],
         })
+    }
+
+    /// The same surface, also closed on itself along u and/or v where the file says so.
+    pub fn closed(mut self, u: bool, v: bool) -> Surface {
+        self.closed[0] |= u;
+        self.closed[1] |= v;
+        self
     }
 
     /// The periods of u and v: the domain's length along a direction in which the surface
@@ -484,12 +494,14 @@ pub fn surface(e: Entity<'_>, s: f64) -> Result<Surface, GeomError> {
     let u = Basis::new(p, knots(&e, "UKnots", "UMultiplicities")?, nu);
     let v = Basis::new(q, knots(&e, "VKnots", "VMultiplicities")?, nv);
     let bad = || degenerate(&e, "degrees, knots, control points or weights do not fit");
+    let closed = |name| e.get(name).and_then(|v| v.as_enum()) == Some("T");
     Surface::new(
         u.ok_or_else(bad)?,
         v.ok_or_else(bad)?,
         &pts,
         weights.as_deref(),
     )
+    .map(|b| b.closed(closed("UClosed"), closed("VClosed")))
     .ok_or_else(bad)
 }
 

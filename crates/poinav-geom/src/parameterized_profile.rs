@@ -73,13 +73,18 @@ pub(crate) fn shape(profile: Entity<'_>, s: f64) -> Result<Shape, GeomError> {
     } else if profile.is_a("IfcTrapeziumProfileDef") {
         let (bottom, top, h) = (dim("BottomXDim")?, dim("TopXDim")?, dim("YDim")?);
         let off = profile.get_f64("TopXOffset").unwrap_or(0.0) * s;
-        let (hb, hh) = (bottom / 2.0, h / 2.0);
+        let hh = h / 2.0;
+        // The schema centres the trapezium's bounding box on the position, so a top line
+        // reaching past the bottom one (a negative offset, or offset + top > bottom) moves
+        // both lines, as IfcOpenShell 0.9 does.
+        let (lo, hi) = ((0.0f64).min(off), bottom.max(off + top));
+        let x0 = -(lo + hi) / 2.0;
         Ok((
             vec![
-                p(-hb, -hh),
-                p(hb, -hh),
-                p(-hb + off + top, hh),
-                p(-hb + off, hh),
+                p(x0, -hh),
+                p(x0 + bottom, -hh),
+                p(x0 + off + top, hh),
+                p(x0 + off, hh),
             ],
             vec![],
         ))

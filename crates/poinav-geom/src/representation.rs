@@ -221,6 +221,11 @@ fn evaluate_item(
         let g = leaf(face_points(&shell_faces(shell)?)?)?;
         out.items.push(g);
         Ok(())
+    } else if (item.is_a("IfcFaceBasedSurfaceModel") || item.is_a("IfcShellBasedSurfaceModel"))
+        && crate::advanced_brep::has_face_surfaces(item)
+    {
+        // Faces on surfaces or bounded by edge loops: the vertices of their mesh.
+        mesh_vertices(item, t, units, depth, out)
     } else if item.is_a("IfcFaceBasedSurfaceModel") {
         let mut faces = Vec::new();
         for set in item.get_refs("FbsmFaces") {

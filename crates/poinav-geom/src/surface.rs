@@ -5,7 +5,7 @@
 //! (rational too, [`crate::bspline`]), `IfcSurfaceOfLinearExtrusion` of a profile's curve
 //! (u the length along the curve's polyline, v along the sweep) and `IfcSurfaceOfRevolution`
 //! (u the angle, v the length along the curve). Angles (and closed
-//! swept curves) are periodic; normals `S_u x S_v` point away from the axis or centre, as
+//! swept curves, and B-spline surfaces along a closed direction) are periodic; normals `S_u x S_v` point away from the axis or centre, as
 //! IFC's do.
 
 use std::f64::consts::TAU;
@@ -410,7 +410,7 @@ impl Surface {
 }
 
 /// The parameters of the point of `b` nearest `p`: the nearest of a grid (or `near`), then
-/// Gauss-Newton steps, kept within the domain.
+/// Gauss-Newton steps, kept within the domain (free to cross it where the surface is closed).
 fn project(b: &bspline::Surface, p: DVec3, near: Option<DVec2>) -> DVec2 {
     let (u0, u1) = b.u.domain();
     let (v0, v1) = b.v.domain();

@@ -4,15 +4,16 @@
 //! (kept uncut, a warning naming the opening), boolean results whose second operand cannot be
 //! made (the first operand kept, a warning naming the operand), boolean results whose first
 //! operand cannot be made (left out with a warning, as IfcOpenShell leaves it out), a surface
-//! model's face of 401 points drawn as a star in one stroke (filled, its area within 1 %),
-//! mirrored profiles and a curve bounded plane. Every case is meshed, its bounding box within
+//! model's face of 401 points drawn as a star in one stroke (filled, its area within 1 %), a
+//! surface model's disc bounded by an edge loop of two half circles and a face with two
+//! outer bounds (their areas within 1 %), mirrored profiles and a curve bounded plane. Every case is meshed, its bounding box within
 //! 1 cm of IfcOpenShell's and, for closed solids, its volume within 1 %.
 
 mod common;
 
 use std::collections::BTreeMap;
 
-use poinav_geom::{mesh_model, GeomError};
+use poinav_geom::{footprint_of, mesh_model, GeomError, PlacementCache};
 use poinav_ifc::{EntityId, Model};
 
 /// Bounding boxes agree when every coordinate of both corners is this close (metres).
@@ -22,7 +23,7 @@ const BOX_TOLERANCE: f64 = 0.01;
 const VOLUME_TOLERANCE: f64 = 0.01;
 
 /// The cases the script writes.
-const CASES: usize = 18;
+const CASES: usize = 20;
 
 #[test]
 fn broken_and_odd_parts_are_meshed_as_ifcopenshell_meshes_them() {
@@ -66,8 +67,15 @@ fn broken_and_odd_parts_are_meshed_as_ifcopenshell_meshes_them() {
             if (e.mesh.area() - 5.5).abs() > 1e-9 {
                 problems.push(format!("{name}: area {}", e.mesh.area()));
             }
-        } else if name == "star_face_401" {
-            // A surface too: its area (the star filled) within 1 %.
+        } else if [
+            "star_face_401",
+            "edge_loop_disc_face",
+            "two_outer_bounds_face",
+        ]
+        .contains(&name.as_str())
+        {
+            // Surfaces too: their area (the star filled, the disc, both rectangles of the
+            // face with two outer bounds) within 1 %.
             let their_area = theirs["area"].as_f64().unwrap();
             eprintln!("{name:34} area {:.6} vs {their_area:.6} m2", e.mesh.area());
             if (e.mesh.area() / their_area - 1.0).abs() > VOLUME_TOLERANCE {
@@ -110,6 +118,22 @@ fn broken_and_odd_parts_are_meshed_as_ifcopenshell_meshes_them() {
         (star.volume() - std::f64::consts::PI).abs() < 1e-4,
         "{}",
         star.volume()
+    );
+    // The disc bounded by an edge loop has a footprint too: its 2 m box (5 m along y per case).
+    let disc = ours["edge_loop_disc_face"];
+    let product = model.entity(disc.product).unwrap();
+    let footprint = footprint_of(&mut PlacementCache::new(&model), product)
+        .unwrap()
+        .footprint;
+    let (lo, hi) = footprint.polygon.iter().fold(
+        (glam::DVec2::splat(f64::MAX), glam::DVec2::splat(f64::MIN)),
+        |(lo, hi), p| (lo.min(*p), hi.max(*p)),
+    );
+    let y = disc.mesh.bounds().unwrap().0.y + 1.0;
+    assert!(
+        (lo - glam::DVec2::new(-1.0, y - 1.0)).abs().max_element() < 1e-6
+            && (hi - glam::DVec2::new(1.0, y + 1.0)).abs().max_element() < 1e-6,
+        "{lo}..{hi}"
     );
     // A wall kept whole names the opening element that could not be made, and why.
     let (wall, warning) = meshes
