@@ -187,18 +187,8 @@ pub(crate) fn shape(profile: Entity<'_>, s: f64) -> Result<Shape, GeomError> {
         thin(fw, wt)?;
         let (x, y) = (fw / 2.0, d / 2.0);
         let (f, e) = (opt("FilletRadius"), opt("EdgeRadius"));
-        let outline = [
-            p(-x, -y),
-            p(x, -y),
-            p(x, -y + ft),
-            p(-x + wt, -y + ft),
-            p(-x + wt, y - ft),
-            p(x, y - ft),
-            p(x, y),
-            p(-x, y),
-        ];
         let corners = [(2, e), (3, f), (4, f), (5, e)];
-        Ok((round_corners(&outline, &corners), vec![]))
+        Ok((round_corners(&channel(x, y, wt, ft), &corners), vec![]))
     } else if profile.is_a("IfcCShapeProfileDef") {
         let (d, w) = (dim("Depth")?, dim("Width")?);
         let t = dim("WallThickness")?;
@@ -238,16 +228,7 @@ pub(crate) fn shape(profile: Entity<'_>, s: f64) -> Result<Shape, GeomError> {
             )
         } else {
             (
-                vec![
-                    p(-x, -y),
-                    p(x, -y),
-                    p(x, -y + t),
-                    p(-x + t, -y + t),
-                    p(-x + t, y - t),
-                    p(x, y - t),
-                    p(x, y),
-                    p(-x, y),
-                ],
+                channel(x, y, t, t).to_vec(),
                 vec![(0, ro), (3, ri), (4, ri), (7, ro)],
             )
         };
@@ -309,6 +290,22 @@ fn i_shape(d: f64, bw: f64, bt: f64, tw: f64, tt: f64, wt: f64, radii: [f64; 4])
         (11, eb),
     ];
     round_corners(&outline, &corners)
+}
+
+/// A channel's outline (a U, a C without lips) of half width `x` and half depth `y`, its web
+/// `web` thick on the left, its flanges `flange` thick, counter-clockwise from the bottom left.
+fn channel(x: f64, y: f64, web: f64, flange: f64) -> [DVec2; 8] {
+    let p = DVec2::new;
+    [
+        p(-x, -y),
+        p(x, -y),
+        p(x, -y + flange),
+        p(-x + web, -y + flange),
+        p(-x + web, y - flange),
+        p(x, y - flange),
+        p(x, y),
+        p(-x, y),
+    ]
 }
 
 /// `outline` with the corners `corners` (vertex index, radius; 0: sharp) rounded: each
