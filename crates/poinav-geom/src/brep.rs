@@ -164,6 +164,16 @@ impl FaceMesher {
     }
 }
 
+/// True when some face of the surface model `item` is bounded by an `IfcEdgeLoop`.
+fn has_edge_loop(item: Entity<'_>) -> bool {
+    [item.get_refs("FbsmFaces"), item.get_refs("SbsmBoundary")]
+        .concat()
+        .iter()
+        .flat_map(|shell| shell.get_refs("CfsFaces"))
+        .flat_map(|face| face.get_refs("Bounds"))
+        .any(|b| b.get_ref("Bound").is_some_and(|lp| lp.is_a("IfcEdgeLoop")))
+}
+
 /// One bound of a face: whether it is the outer one, its points' `#id`s and the points.
 type FaceLoop = (bool, Vec<EntityId>, Vec<DVec3>);
 
@@ -189,14 +199,17 @@ pub fn face_mesh(item: Entity<'_>, units: &Units) -> Result<(Mesh, bool), GeomEr
             m.shell(void, s)?;
         }
         true
-    } else if item.is_a("IfcFaceBasedSurfaceModel") {
-        for set in item.get_refs("FbsmFaces") {
-            m.shell(set, s)?;
-        }
-        false
-    } else if item.is_a("IfcShellBasedSurfaceModel") {
-        for shell in item.get_refs("SbsmBoundary") {
-            m.shell(shell, s)?;
+    } else if item.is_a("IfcFaceBasedSurfaceModel") || item.is_a("IfcShellBasedSurfaceModel") {
+        for shell in [item.get_refs("FbsmFaces"), item.get_refs("SbsmBoundary")].concat() {
+            if let Err(e) = m.shell(shell, s) {
+                // A shell whose first face has poly loops but a later one an edge loop
+                // ([`crate::advanced_brep::has_face_surfaces`] looks at the first face only, to
+                // stay cheap on big meshes): the advanced mesher takes every kind of bound.
+                if has_edge_loop(item) {
+                    return Ok((crate::advanced_brep::surface_model(item, units)?, false));
+                }
+                return Err(e);
+            }
         }
         false
     } else {
@@ -208,6 +221,39 @@ pub fn face_mesh(item: Entity<'_>, units: &Units) -> Result<(Mesh, bool), GeomEr
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_surface_model_mixing_poly_loops_and_edge_loops_is_meshed_whole() {
+        // Two unit squares: at z = 0 bounded by a poly loop (the first face), at z = 1 by an
+        // edge loop of four edge curves along polylines.
+        let m = crate::test_model::ifc4(
+            "#1=IFCCARTESIANPOINT((0.,0.,0.));#2=IFCCARTESIANPOINT((1.,0.,0.));\
+             #3=IFCCARTESIANPOINT((1.,1.,0.));#4=IFCCARTESIANPOINT((0.,1.,0.));\
+             #5=IFCPOLYLOOP((#1,#2,#3,#4));#6=IFCFACEOUTERBOUND(#5,.T.);#7=IFCFACE((#6));\
+             #11=IFCCARTESIANPOINT((0.,0.,1.));#12=IFCCARTESIANPOINT((1.,0.,1.));\
+             #13=IFCCARTESIANPOINT((1.,1.,1.));#14=IFCCARTESIANPOINT((0.,1.,1.));\
+             #21=IFCVERTEXPOINT(#11);#22=IFCVERTEXPOINT(#12);\
+             #23=IFCVERTEXPOINT(#13);#24=IFCVERTEXPOINT(#14);\
+             #31=IFCPOLYLINE((#11,#12));#32=IFCPOLYLINE((#12,#13));\
+             #33=IFCPOLYLINE((#13,#14));#34=IFCPOLYLINE((#14,#11));\
+             #41=IFCEDGECURVE(#21,#22,#31,.T.);#42=IFCEDGECURVE(#22,#23,#32,.T.);\
+             #43=IFCEDGECURVE(#23,#24,#33,.T.);#44=IFCEDGECURVE(#24,#21,#34,.T.);\
+             #51=IFCORIENTEDEDGE(*,*,#41,.T.);#52=IFCORIENTEDEDGE(*,*,#42,.T.);\
+             #53=IFCORIENTEDEDGE(*,*,#43,.T.);#54=IFCORIENTEDEDGE(*,*,#44,.T.);\
+             #61=IFCEDGELOOP((#51,#52,#53,#54));#62=IFCFACEOUTERBOUND(#61,.T.);\
+             #63=IFCFACE((#62));#70=IFCCONNECTEDFACESET((#7,#63));\
+             #71=IFCFACEBASEDSURFACEMODEL((#70));#72=IFCCONNECTEDFACESET((#7));\
+             #73=IFCFACEBASEDSURFACEMODEL((#72));",
+        );
+        let (mesh, solid) = face_mesh(m.entity(EntityId(71)).unwrap(), &Units::SI).unwrap();
+        assert!(!solid);
+        assert!((mesh.area() - 2.0).abs() < 1e-9, "{}", mesh.area());
+        let zs: Vec<f64> = mesh.positions.iter().map(|p| p.z).collect();
+        assert!(zs.contains(&0.0) && zs.contains(&1.0));
+        // Poly loops alone stay on the faceted path.
+        let (mesh, _) = face_mesh(m.entity(EntityId(73)).unwrap(), &Units::SI).unwrap();
+        assert!((mesh.area() - 1.0).abs() < 1e-9, "{}", mesh.area());
+    }
 
     #[test]
     fn each_of_several_outer_bounds_is_a_face_with_the_holes_inside_it() {
