@@ -14,9 +14,12 @@ use crate::triangulation::triangulate_3d_resolving;
 pub fn face_set_mesh(item: Entity<'_>, s: f64) -> Result<(Mesh, bool), GeomError> {
     let list = required_ref(&item, "Coordinates", "IfcCartesianPointList3D")?;
     let points: Vec<DVec3> = point_list(list)?.into_iter().map(|p| p * s).collect();
-    // 1-based indices into PnIndex when given, else into the point list.
+    // 1-based indices into PnIndex when given, else into the point list. A list of lists in
+    // that place is IFC4's first-release `NormalIndex` (indices into `Normals`, one triple per
+    // triangle: buildingSMART's own texture examples write it), not point indices: ignored.
     let pn: Option<Vec<usize>> = item.get("PnIndex").and_then(|v| {
         v.as_list()
+            .filter(|l| !l.iter().any(|i| i.as_list().is_some()))
             .map(|l| l.iter().map(|i| index(i).unwrap_or(usize::MAX)).collect())
     });
     let resolve = |i: &Value<'_>| -> Result<u32, GeomError> {
@@ -91,7 +94,32 @@ pub fn face_set_mesh(item: Entity<'_>, s: f64) -> Result<(Mesh, bool), GeomError
     } else {
         return Err(unsupported(&item, "tessellated face set"));
     }
+    drop_unused_points(&mut mesh);
     Ok((mesh, closed))
+}
+
+/// Removes the points no triangle uses (a point list may hold more than this set draws, e.g.
+/// under a `PnIndex`), keeping the others in order, so the mesh's bounds are the drawn ones.
+fn drop_unused_points(mesh: &mut Mesh) {
+    let mut new_index = vec![u32::MAX; mesh.positions.len()];
+    for t in &mesh.triangles {
+        for &i in t {
+            new_index[i as usize] = 0;
+        }
+    }
+    let mut kept = 0u32;
+    let mut positions = Vec::with_capacity(mesh.positions.len());
+    for (i, p) in mesh.positions.iter().enumerate() {
+        if new_index[i] == 0 {
+            new_index[i] = kept;
+            kept += 1;
+            positions.push(*p);
+        }
+    }
+    mesh.positions = positions;
+    for t in &mut mesh.triangles {
+        *t = t.map(|i| new_index[i as usize]);
+    }
 }
 
 /// A 1-based index as a 0-based one.

@@ -260,6 +260,39 @@ fn colours_come_from_styled_items_else_from_the_material() {
 }
 
 #[test]
+fn triangulated_face_set_pn_index_flat_or_first_release_normal_index() {
+    // One unit tetrahedron (volume 1/6, bounds 0..1) three ways: straight indices; through a
+    // flat PnIndex over a point list with a decoy first point; and with IFC4's first-release
+    // NormalIndex (a list of index triples, as buildingSMART's texture examples write it) in
+    // PnIndex's place, which is not a point mapping and must be ignored, not make every
+    // index "outside the point list".
+    let m = model(
+        "#40=IFCCARTESIANPOINTLIST3D(((0.,0.,0.),(1.,0.,0.),(0.,1.,0.),(0.,0.,1.)));
+         #41=IFCTRIANGULATEDFACESET(#40,$,.T.,((1,3,2),(1,2,4),(1,4,3),(2,3,4)),$);
+         #42=IFCCARTESIANPOINTLIST3D(((9.,9.,9.),(0.,0.,0.),(1.,0.,0.),(0.,1.,0.),(0.,0.,1.)));
+         #43=IFCTRIANGULATEDFACESET(#42,$,.T.,((1,3,2),(1,2,4),(1,4,3),(2,3,4)),(2,3,4,5));
+         #44=IFCTRIANGULATEDFACESET(#40,((0.,0.,-1.),(0.,-1.,0.),(-1.,0.,0.),(0.577,0.577,0.577)),
+             .T.,((1,3,2),(1,2,4),(1,4,3),(2,3,4)),((1,1,1),(2,2,2),(3,3,3),(4,4,4)));
+         #50=IFCSHAPEREPRESENTATION($,'Body','Tessellation',(#41));#51=IFCPRODUCTDEFINITIONSHAPE($,$,(#50));
+         #52=IFCBUILDINGELEMENTPROXY('0YvctVUKr0kugbFTf53O9P',$,'plain',$,$,#3,#51,$,$);
+         #53=IFCSHAPEREPRESENTATION($,'Body','Tessellation',(#43));#54=IFCPRODUCTDEFINITIONSHAPE($,$,(#53));
+         #55=IFCBUILDINGELEMENTPROXY('0YvctVUKr0kugbFTf53O9Q',$,'pn',$,$,#3,#54,$,$);
+         #56=IFCSHAPEREPRESENTATION($,'Body','Tessellation',(#44));#57=IFCPRODUCTDEFINITIONSHAPE($,$,(#56));
+         #58=IFCBUILDINGELEMENTPROXY('0YvctVUKr0kugbFTf53O9R',$,'normal index',$,$,#3,#57,$,$);",
+    );
+    for id in [52, 55, 58] {
+        let e = mesh(&m, id).unwrap_or_else(|err| panic!("#{id}: {err}"));
+        assert_eq!(e.mesh.triangles.len(), 4, "#{id}");
+        assert!(
+            close(e.mesh.volume(), 1.0 / 6.0),
+            "#{id}: {}",
+            e.mesh.volume()
+        );
+        assert_box(&e, [0.0; 3], [1.0; 3]);
+    }
+}
+
+#[test]
 fn hostile_input_is_an_error_naming_its_id() {
     // A mapped-item bomb: each level maps the level below 10 times (10^7 cubes), a NaN
     // coordinate, a depth that overflows when scaled, a boolean chain longer than the limit
