@@ -39,7 +39,7 @@ impl fmt::Display for ReadErrorKind {
             ReadErrorKind::BadHeader(m) => write!(f, "malformed HEADER section: {m}"),
             ReadErrorKind::UnknownSchema(s) => write!(
                 f,
-                "unknown schema `{s}`: poinav reads IFC2X3, IFC4 and IFC4X3_ADD2 (and IFC4X3 release candidates)"
+                "unknown schema `{s}`: poinav reads IFC2X3, IFC4 and IFC4X3_ADD2 (and IFC4 and IFC4X3 release candidates)"
             ),
             ReadErrorKind::UnterminatedString => f.write_str("string literal is never closed"),
             ReadErrorKind::UnterminatedComment => f.write_str("comment is never closed"),

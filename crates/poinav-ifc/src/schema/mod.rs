@@ -100,6 +100,9 @@ impl Schema {
             "IFC2X3_TC1" => Some((Schema::Ifc2x3, false)),
             "IFC4" => Some((Schema::Ifc4, true)),
             "IFC4_ADD1" | "IFC4_ADD2" | "IFC4_ADD2_TC1" => Some((Schema::Ifc4, false)),
+            // IFC4's release candidates (exporters of 2012-2013 wrote `IFC4RC4`): read as IFC4,
+            // whose entities they mostly share; attribute-count differences become diagnostics.
+            s if s.starts_with("IFC4RC") => Some((Schema::Ifc4, false)),
             "IFC4X3_ADD2" => Some((Schema::Ifc4x3Add2, true)),
             s if s.starts_with("IFC4X3") => Some((Schema::Ifc4x3Add2, false)),
             _ => None,
@@ -285,6 +288,11 @@ mod tests {
             Schema::from_identifier("ifc2x3"),
             Some((Schema::Ifc2x3, true))
         );
+        assert_eq!(
+            Schema::from_identifier("IFC4RC4"),
+            Some((Schema::Ifc4, false))
+        );
         assert_eq!(Schema::from_identifier("IFC2X2_FINAL"), None);
+        assert_eq!(Schema::from_identifier("IFC4X1"), None);
     }
 }
