@@ -312,9 +312,9 @@ impl Surface {
         ]
     }
 
-    /// The point at `(u, v)`; a parameter along a closed direction is taken modulo its
-    /// period.
-    pub fn point(&self, u: f64, v: f64) -> DVec3 {
+    /// `(u, v)` with a parameter along a closed direction past the domain taken modulo its
+    /// period (into the domain); the others as they are.
+    pub fn wrap(&self, u: f64, v: f64) -> (f64, f64) {
         let wrap = |t: f64, b: &Basis, closed: bool| {
             let (lo, hi) = b.domain();
             if closed && (t < lo || t > hi) {
@@ -323,10 +323,16 @@ impl Surface {
                 t
             }
         };
-        let (u, v) = (
+        (
             wrap(u, &self.u, self.closed[0]),
             wrap(v, &self.v, self.closed[1]),
-        );
+        )
+    }
+
+    /// The point at `(u, v)`; a parameter along a closed direction is taken modulo its
+    /// period ([`Surface::wrap`]).
+    pub fn point(&self, u: f64, v: f64) -> DVec3 {
+        let (u, v) = self.wrap(u, v);
         let (su, sv) = (self.u.span(u), self.v.span(v));
         let (nu, nv) = (self.u.functions(su, u), self.v.functions(sv, v));
         let (p, q) = (self.u.degree, self.v.degree);

@@ -420,13 +420,11 @@ fn project(b: &bspline::Surface, p: DVec3, near: Option<DVec2>) -> DVec2 {
         Some(_) => t,
         None => t.clamp(lo, hi),
     };
-    // Results stay in the domain: clamped, or wrapped along a closed direction.
-    let within = |t: f64, lo: f64, hi: f64, period: Option<f64>| match period {
-        Some(w) if t < lo || t > hi => lo + (t - lo).rem_euclid(w),
-        Some(_) => t,
-        None => t.clamp(lo, hi),
+    // Results stay in the domain: wrapped along a closed direction, else clamped.
+    let clamp = |x: DVec2| {
+        let (u, v) = b.wrap(x.x, x.y);
+        DVec2::new(keep(u, u0, u1, pu), keep(v, v0, v1, pv))
     };
-    let clamp = |x: DVec2| DVec2::new(within(x.x, u0, u1, pu), within(x.y, v0, v1, pv));
     let n = 24;
     let mut best = (f64::INFINITY, DVec2::new(u0, v0));
     let mut consider = |uv: DVec2| {
