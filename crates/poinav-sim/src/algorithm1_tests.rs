@@ -513,13 +513,7 @@ fn decide_keeps_right_with_a_wall_pd_unless_driven_by_keys() {
 /// overlapping, some waiting already): the grid lookup decides as testing every robot.
 #[test]
 fn door_waits_through_the_grid_equal_those_testing_every_robot() {
-    let scenario = crate::Scenario::from_toml(
-        "name = \"doors\"\nduration_s = 1.0\n[building]\ndemo = { rooms_per_side = 3 }\n[[robot]]\nname = \"R\"\nstart = { x = 1.0, y = 1.0 }\ncontroller = { kind = \"idle\" }\n",
-        "doors.toml",
-        std::path::Path::new("."),
-    )
-    .unwrap();
-    let floor = crate::test_floor::prepared(&scenario, None);
+    let floor = crate::test_floor::doors_floor();
     assert!(floor.doors.len() >= 6, "{} doors", floor.doors.len());
     let nav = Plan::new(&floor);
     let mut seed = 0x2545_F491_4F6C_DD1Du64;
@@ -596,13 +590,7 @@ fn door_waits_through_the_grid_equal_those_testing_every_robot() {
 /// goes first: lower index) no longer waits and B steps aside off A's line to Room 5's door.
 #[test]
 fn of_two_robots_waiting_for_each_other_one_goes_and_the_other_gives_way() {
-    let scenario = crate::Scenario::from_toml(
-        "name = \"doors\"\nduration_s = 1.0\n[building]\ndemo = { rooms_per_side = 3 }\n[[robot]]\nname = \"R\"\nstart = { x = 1.0, y = 1.0 }\ncontroller = { kind = \"idle\" }\n",
-        "doors.toml",
-        std::path::Path::new("."),
-    )
-    .unwrap();
-    let floor = crate::test_floor::prepared(&scenario, None);
+    let floor = crate::test_floor::doors_floor();
     let door = |name: &str| {
         let d = floor
             .doors

@@ -38,6 +38,17 @@ pub(crate) fn prepared(scenario: &crate::Scenario, variant: Option<&str>) -> Flo
     serde_json::from_str(json).expect("a floor")
 }
 
+/// The test building with three rooms a side (the "doors" floor of [`PREPARED`]).
+pub(crate) fn doors_floor() -> Floor {
+    let scenario = crate::Scenario::from_toml(
+        "name = \"doors\"\nduration_s = 1.0\n[building]\ndemo = { rooms_per_side = 3 }\n[[robot]]\nname = \"R\"\nstart = { x = 1.0, y = 1.0 }\ncontroller = { kind = \"idle\" }\n",
+        "doors.toml",
+        std::path::Path::new("."),
+    )
+    .unwrap();
+    prepared(&scenario, None)
+}
+
 /// A wall with one ring.
 pub(crate) fn wall(id: &str, ring: Ring) -> FloorObstacle {
     FloorObstacle {

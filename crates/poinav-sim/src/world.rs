@@ -734,9 +734,7 @@ impl World {
     /// robots are offered cell by cell, one spanning several cells more than once, and the
     /// search stops at the first true.
     pub fn any_robot_near(&self, lo: DVec2, hi: DVec2, f: &mut dyn FnMut(u32) -> bool) -> bool {
-        let s = DVec2::splat(self.slack);
-        let (x0, y0) = self.cell_of(lo - s);
-        let (x1, y1) = self.cell_of(hi + s);
+        let [x0, y0, x1, y1] = self.slack_cells(lo, hi);
         for y in y0..=y1 {
             for x in x0..=x1 {
                 if self.robots.cell(y * self.nx + x).iter().any(|&r| f(r)) {
@@ -751,11 +749,18 @@ impl World {
     /// cells (as the robot grid was last built) meet the slack-widened cells of the box.
     pub fn robot_listed_near(&self, i: usize, lo: DVec2, hi: DVec2) -> bool {
         debug_assert!(!self.stale, "the robot grid lists the boxes' cells");
+        let [x0, y0, x1, y1] = self.slack_cells(lo, hi);
+        let [a0, b0, a1, b1] = self.rects[i].map(|v| v as usize);
+        a0 <= x1 && a1 >= x0 && b0 <= y1 && b1 >= y0
+    }
+
+    /// The cells `[x0, y0, x1, y1]` of the box `lo`-`hi` widened by the slack: where
+    /// [`World::any_robot_near`] looks, and so where [`World::robot_listed_near`] tests.
+    fn slack_cells(&self, lo: DVec2, hi: DVec2) -> [usize; 4] {
         let s = DVec2::splat(self.slack);
         let (x0, y0) = self.cell_of(lo - s);
         let (x1, y1) = self.cell_of(hi + s);
-        let [a0, b0, a1, b1] = self.rects[i].map(|v| v as usize);
-        a0 <= x1 && a1 >= x0 && b0 <= y1 && b1 >= y0
+        [x0, y0, x1, y1]
     }
 
     /// Robots other than `skip` whose box's bounding box comes within the slack of `lo`-`hi`,

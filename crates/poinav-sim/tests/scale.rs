@@ -270,7 +270,7 @@ fn a_crowd_at_the_doors_decides_as_before_the_grid_lookup() {
 /// moved again (none arrived: robots leaving facing doors met nose to nose in the corridor, each
 /// waiting for the other's door). Now the wait-for cycles and face-offs resolve and robots
 /// merge into the corridor: 14 arrive, the last at 92.8 s, among them R6 and R18, the pair of
-/// that first deadlock. (Not all: ten still jam at the corridor's dead end, see the report.)
+/// that first deadlock. (Not all: ten still jam at the corridor's dead end, as the README's simulation section says.)
 #[test]
 fn a_door_crowd_unjams_where_robots_met_nose_to_nose() {
     let s = door_crowd(95.0);
