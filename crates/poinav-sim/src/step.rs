@@ -268,9 +268,28 @@ fn plan_move(
     dt: f64,
     sc: &mut Scratch,
 ) -> Move {
-    let (lim, st) = (&robot.limits, robot.state);
-    let v = lim.next_speed(st.speed, action.v, dt);
+    let lim = &robot.limits;
+    let v = lim.next_speed(robot.state.speed, action.v, dt);
     let omega = lim.turn(action.omega);
+    if v == 0.0 && omega == 0.0 {
+        if let Some(m) = standing(world, robot.state, (v, omega), *world.robot(i), dt, sc) {
+            return m;
+        }
+    }
+    turn_and_slide(world, robot, i, (v, omega), dt, sc)
+}
+
+/// [`plan_move`] at speed `v` and turn rate `omega` (the limits applied): the box turned, then
+/// slid along what it meets.
+fn turn_and_slide(
+    world: &World,
+    robot: &Robot,
+    i: usize,
+    (v, omega): (f64, f64),
+    dt: f64,
+    sc: &mut Scratch,
+) -> Move {
+    let st = robot.state;
     // The world holds robot i's footprint at its current pose.
     let start = *world.robot(i);
     gather(
@@ -374,6 +393,42 @@ fn plan_move(
         touched,
         looked,
     }
+}
+
+/// The move of a robot that neither drives nor turns in this step (`v` and the turn zero), as
+/// [`plan_move`] computes it, without looking at anything: such a robot stays where it is
+/// whatever is around it (where it stands is free, or its move would be undone to it), so its
+/// move looks at no edge and no robot, and no other robot's move in this step can change it.
+/// Robots waiting at doors and in crowds do this most of the time. `None` when the heading
+/// would change bits (wrapped, or -0 turned to 0): [`plan_move`] then turns the box.
+fn standing(
+    world: &World,
+    st: crate::robot::RobotState,
+    (v, omega): (f64, f64),
+    start: Obb,
+    dt: f64,
+    sc: &mut Scratch,
+) -> Option<Move> {
+    let heading = wrap_angle(st.heading + omega * dt);
+    if heading.to_bits() != st.heading.to_bits() {
+        return None;
+    }
+    sc.robots.clear();
+    let footprint = Obb { c: st.pos, ..start };
+    let bounds = footprint.aabb();
+    Some(Move {
+        pos: st.pos,
+        heading,
+        omega: wrap_angle(heading - st.heading) / dt,
+        actual_speed: 0.0,
+        speed: v,
+        travelled: 0.0,
+        footprint,
+        bounds,
+        cells: world.rect(bounds),
+        touched: Vec::new(),
+        looked: Region::EMPTY,
+    })
 }
 
 /// A record's placeholder before a step writes it.

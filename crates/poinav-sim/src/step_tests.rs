@@ -1,7 +1,8 @@
 //! Unit tests of the step: the fixed 60 Hz clock, the speed limits of a move, no tunnelling
 //! through a thin wall at the top speed, sliding, contacts reported once per touch, a start
-//! overlapping a wall refused, and the parallel moves (kept where no moved neighbour came near)
-//! equal to planning every move in order.
+//! overlapping a wall refused, the parallel moves (kept where no moved neighbour came near)
+//! equal to planning every move in order, and a standing robot's move (nothing looked at) the
+//! same as the full one.
 
 use super::*;
 use crate::controller::ControllerSpec;
@@ -218,4 +219,55 @@ fn parallel_moves_equal_moves_planned_one_after_the_other() {
         "{} contacts, {robots} with robots",
         a.len()
     );
+}
+
+#[test]
+fn a_standing_robots_move_is_the_full_move_without_looking() {
+    // Robots at rest 1.15 m apart (0.4-0.5 m gaps), beside a wall (0.05-0.25 m away), one with
+    // the heading -0 (turning it by +0 changes its bits: the full move handles that).
+    let mut floor = open_floor(None);
+    floor.obstacles.push(wall("w", rect(-3.0, -1.0, 7.0, -0.6)));
+    let headings = [0.0, -0.0, 90.0, 179.0, -179.0, 45.0, 180.0, -90.0];
+    let setups: Vec<_> = headings
+        .iter()
+        .enumerate()
+        .map(|(k, &h)| {
+            let p = DVec2::new(-2.0 + k as f64 * 1.15, 0.0);
+            setup(&format!("R{k}"), p, h, ControllerSpec::Idle)
+        })
+        .collect();
+    let sim = Sim::new(&floor, &setups, SimOptions::default()).unwrap();
+    let dt = sim.opts.dt;
+    let mut fast = 0;
+    for (i, robot) in sim.robots.iter().enumerate() {
+        for omega in [0.0, -0.0] {
+            let mut sc = Scratch::default();
+            let full = turn_and_slide(&sim.world, robot, i, (0.0, omega), dt, &mut sc);
+            let start = *sim.world.robot(i);
+            let Some(m) = standing(&sim.world, robot.state, (0.0, omega), start, dt, &mut sc)
+            else {
+                assert_eq!(robot.state.heading.to_bits(), (-0.0f64).to_bits());
+                continue;
+            };
+            fast += 1;
+            assert!(sc.robots.is_empty(), "robot {i}: looked at nobody");
+            let bits = |m: &Move| {
+                [
+                    m.pos.x,
+                    m.pos.y,
+                    m.heading,
+                    m.omega,
+                    m.actual_speed,
+                    m.speed,
+                    m.travelled,
+                ]
+                .map(f64::to_bits)
+            };
+            assert_eq!(bits(&m), bits(&full), "robot {i} omega {omega}");
+            assert_eq!(m.footprint, full.footprint, "robot {i}");
+            assert_eq!((m.bounds, m.cells), (full.bounds, full.cells), "robot {i}");
+            assert!(m.touched.is_empty() && full.touched.is_empty(), "robot {i}");
+        }
+    }
+    assert_eq!(fast, 15, "every case but the -0 heading turned by +0");
 }
