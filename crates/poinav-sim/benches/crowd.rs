@@ -46,7 +46,7 @@ fn bench_second(
                 });
                 let mut rec = Recorder::new(&sim, 61, Vec::new(), trace);
                 // As `poinav simulate` runs it: the loop on a thread of the pool.
-                poinav_sim::on_pool(|| {
+                poinav_sim::on_pool(setups.len(), || {
                     for k in 0..=60 {
                         sim.tick(k < 60);
                         rec.after_tick(&sim, DT).unwrap();

@@ -180,7 +180,7 @@ fn bench_second(
             || Sim::new(floor, setups, opts.clone()).unwrap(),
             |mut sim| {
                 // As `poinav simulate` runs it: the loop on a thread of the pool.
-                poinav_sim::on_pool(|| {
+                poinav_sim::on_pool(setups.len(), || {
                     for _ in 0..60 {
                         sim.tick(true);
                     }

@@ -55,7 +55,7 @@ fn main() {
     let mut rec = Recorder::new(&sim, steps + 1, Vec::new(), trace);
     let (wall, cpu) = (Instant::now(), cpu_seconds());
     // As `poinav simulate` runs it: the loop on a thread of the pool.
-    poinav_sim::on_pool(|| {
+    poinav_sim::on_pool(n as usize, || {
         for k in 0..=steps {
             sim.tick(k < steps);
             rec.after_tick(&sim, DT).unwrap();

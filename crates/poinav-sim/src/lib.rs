@@ -46,7 +46,7 @@ pub use events::{Event, EventKind};
 pub use key_error::KeyError;
 pub use output::{run_into, run_into_as, write_outputs};
 pub use recorder::{Recorder, RobotFigures, TraceFormat, TraceOut};
-pub use run::{on_pool, run, run_with, Outcome};
+pub use run::{on_pool, run, run_with, Outcome, KEEP_BUSY_ROBOTS};
 pub use scenario::Scenario;
 pub use step::{RobotSetup, Sim, SimOptions, DT};
 

@@ -2,6 +2,8 @@
 //! [`Recorder`] streaming the trace and measuring as it goes (memory flat in the run's length),
 //! judge the expectations at the end; the summary of a finished run.
 
+use std::sync::atomic::{AtomicBool, Ordering};
+
 use poinav_nav::Floor;
 use serde_json::{json, Value};
 
@@ -111,13 +113,69 @@ fn round(v: f64) -> Value {
     }
 }
 
-/// Runs `work` on a thread of rayon's global pool and waits for it: a simulation loop calls the
-/// pool several times per step (sensing, perception, decisions, moves, trace lines), and from
-/// a thread outside the pool each call hands the work over and sleeps until it is done (two
-/// context switches and a wake-up: with one thread 21,600 switches made 100 robots 2.6x slower
-/// in wall time); on a pool thread the calls run in place and idle threads steal from it.
-pub fn on_pool<R: Send>(work: impl FnOnce() -> R + Send) -> R {
-    rayon::scope(|_| work())
+/// Runs `work`, the simulation loop of a crowd of `robots`, on a thread of rayon's global pool
+/// and waits for it: the loop calls the pool several times per step (sensing and perception,
+/// decisions and moves, trace lines), and from a thread outside the pool each call hands the
+/// work over and sleeps until it is done (two context switches and a wake-up: with one thread
+/// 21,600 switches made 100 robots 2.6x slower in wall time); on a pool thread the calls run in
+/// place and idle threads steal from it.
+///
+/// For a crowd the step splits over threads ([`KEEP_BUSY_ROBOTS`] robots or more), the pool's
+/// other threads are kept awake looking for work while `work` runs ([`keep_busy`]) instead of
+/// falling asleep between the step's calls: waking a sleeping thread costs a system call and a
+/// context switch each time, about a fifth of the samples of 100 robots on two threads
+/// (`perf`: the scheduler and rayon's idle loop). Smaller crowds run on one thread anyway.
+pub fn on_pool<R: Send>(robots: usize, work: impl FnOnce() -> R + Send) -> R {
+    let done = AtomicBool::new(false);
+    rayon::scope(|s| {
+        if robots >= KEEP_BUSY_ROBOTS {
+            let me = rayon::current_thread_index();
+            for _ in 1..rayon::current_num_threads() {
+                let done = &done;
+                s.spawn(move |_| keep_busy(me, done));
+            }
+        }
+        // Set however `work` ends (a panic too): the threads kept busy stop.
+        let _stop = SetOnDrop(&done);
+        work()
+    })
+}
+
+/// The smallest crowd [`on_pool`] keeps the pool's threads awake for: the step's parallel
+/// passes hand out at least 8 robots per task, so smaller crowds run on one thread.
+pub const KEEP_BUSY_ROBOTS: usize = 16;
+
+/// Sets its flag when dropped.
+struct SetOnDrop<'a>(&'a AtomicBool);
+
+impl Drop for SetOnDrop<'_> {
+    fn drop(&mut self) {
+        self.0.store(true, Ordering::Release);
+    }
+}
+
+/// Runs the pool's pending work (stolen from the thread `on` runs on) until `done`, polling
+/// between jobs (after a few idle polls, giving the core to other processes at each poll). A
+/// no-op on the thread `work` runs on (were it picked up there, it would wait for itself).
+fn keep_busy(on: Option<usize>, done: &AtomicBool) {
+    if rayon::current_thread_index() == on {
+        return;
+    }
+    let mut idle = 0u32;
+    while !done.load(Ordering::Acquire) {
+        match rayon::yield_now() {
+            Some(rayon::Yield::Executed) => idle = 0,
+            Some(rayon::Yield::Idle) => {
+                idle = idle.saturating_add(1);
+                if idle < 64 {
+                    std::hint::spin_loop();
+                } else {
+                    std::thread::yield_now();
+                }
+            }
+            None => return,
+        }
+    }
 }
 
 /// Runs `scenario` (its variant `variant`, when it has variants) on `floor`, keeping the whole
@@ -191,7 +249,7 @@ pub fn run_with(
         .collect();
     let mut rec = Recorder::new(&sim, steps + 1, judges, trace);
     let dt = scenario.dt;
-    let (sim, finished) = on_pool(move || {
+    let (sim, finished) = on_pool(setups.len(), move || {
         for k in 0..=steps {
             sim.tick(k < steps);
             if let Err(e) = rec.after_tick(&sim, dt) {
@@ -218,4 +276,40 @@ pub fn run_with(
         samples,
         trace: None,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use rayon::prelude::*;
+
+    use super::*;
+
+    #[test]
+    fn work_on_the_pool_with_its_threads_kept_busy_returns_and_ends() {
+        // Four threads whatever the machine: three kept busy.
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(4)
+            .build()
+            .unwrap();
+        pool.install(|| {
+            // Parallel calls inside, one nested on_pool, small and large crowds.
+            let sum = on_pool(1000, || {
+                let a: u64 = (0..100_000u64).into_par_iter().sum();
+                let b = on_pool(1000, || {
+                    (0..1000u64).into_par_iter().map(|x| x * 2).sum::<u64>()
+                });
+                a + b
+            });
+            assert_eq!(sum, 4_999_950_000 + 999_000);
+            assert_eq!(on_pool(2, || 7), 7);
+            // A panic in the work stops the busy threads too, and reaches the caller.
+            let caught = std::panic::catch_unwind(|| on_pool(1000, || panic!("in the work")));
+            assert!(caught.is_err());
+            // The pool is still there to use.
+            assert_eq!(
+                on_pool(1000, || (1..=10u64).into_par_iter().sum::<u64>()),
+                55
+            );
+        });
+    }
 }
