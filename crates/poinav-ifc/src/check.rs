@@ -1,5 +1,6 @@
 //! Second pass over a scanned model: dangling references, attribute counts, parenthesis
-//! balance (in parallel), bytes that are not UTF-8, and cycles in placements and aggregation.
+//! balance and empty values (in parallel), bytes that are not UTF-8, and cycles in placements
+//! and aggregation.
 
 use rayon::prelude::*;
 use rustc_hash::{FxHashMap, FxHashSet};
@@ -25,6 +26,9 @@ struct Shape {
     bad_escape: Option<(usize, usize)>,
     /// The opening quote of a string that is never closed.
     unclosed: Option<usize>,
+    /// The first empty value (`,,`, `(,` or `,)`): the 1-based attribute it is in, and whether
+    /// it is the attribute itself (not an item of a list inside it).
+    empty: Option<(usize, bool)>,
 }
 
 /// Walks one argument list byte by byte; `exists` tells whether a referenced id is defined.
@@ -48,6 +52,10 @@ fn shape(args: &[u8], exists: impl Fn(u64) -> bool, seps: &mut Vec<u32>) -> Shap
     let mut bad_escape = None;
     // The opening quote of a string that never closes.
     let mut unclosed = None;
+    // Whether a value came since the last `(` or `,`, and whether that was a `,`.
+    let mut filled = false;
+    let mut after_comma = false;
+    let mut empty = None;
     while i < args.len() {
         let c = args[i];
         if fresh && !matches!(c, b' ' | b'\t' | b'\r' | b'\n') {
@@ -66,6 +74,7 @@ fn shape(args: &[u8], exists: impl Fn(u64) -> bool, seps: &mut Vec<u32>) -> Shap
                     bare = Some((i, j));
                 }
                 saw_value = true;
+                filled = true;
                 i = j;
                 continue;
             }
@@ -73,6 +82,7 @@ fn shape(args: &[u8], exists: impl Fn(u64) -> bool, seps: &mut Vec<u32>) -> Shap
         match c {
             b'\'' => {
                 saw_value = true;
+                filled = true;
                 match crate::string::literal_end(args, i) {
                     Some(q) => {
                         let raw = &args[i + 1..q];
@@ -94,6 +104,7 @@ fn shape(args: &[u8], exists: impl Fn(u64) -> bool, seps: &mut Vec<u32>) -> Shap
             }
             b'"' => {
                 saw_value = true;
+                filled = true;
                 i = memchr::memchr(b'"', &args[i + 1..]).map_or(args.len(), |q| i + q + 2);
                 continue;
             }
@@ -106,12 +117,18 @@ fn shape(args: &[u8], exists: impl Fn(u64) -> bool, seps: &mut Vec<u32>) -> Shap
                 depth += 1;
                 max_depth = max_depth.max(depth);
                 fresh = true;
+                filled = false;
+                after_comma = false;
             }
             b')' => {
                 if depth == 0 {
                     closed_at = None;
                     break;
                 }
+                if !filled && after_comma && empty.is_none() {
+                    empty = Some((commas + 1, depth == 1));
+                }
+                filled = true;
                 depth -= 1;
                 if depth == 0 {
                     seps.push(i as u32);
@@ -120,6 +137,11 @@ fn shape(args: &[u8], exists: impl Fn(u64) -> bool, seps: &mut Vec<u32>) -> Shap
                 }
             }
             b',' => {
+                if !filled && empty.is_none() {
+                    empty = Some((commas + 1, depth == 1));
+                }
+                filled = false;
+                after_comma = true;
                 if depth == 1 {
                     commas += 1;
                     seps.push(i as u32);
@@ -128,6 +150,7 @@ fn shape(args: &[u8], exists: impl Fn(u64) -> bool, seps: &mut Vec<u32>) -> Shap
             }
             b'#' => {
                 saw_value = true;
+                filled = true;
                 let s = i + 1;
                 let mut j = s;
                 while j < args.len() && args[j].is_ascii_digit() {
@@ -156,6 +179,7 @@ fn shape(args: &[u8], exists: impl Fn(u64) -> bool, seps: &mut Vec<u32>) -> Shap
                 if depth >= 1 {
                     saw_value = true;
                 }
+                filled = true;
             }
         }
         i += 1;
@@ -175,6 +199,7 @@ fn shape(args: &[u8], exists: impl Fn(u64) -> bool, seps: &mut Vec<u32>) -> Shap
         bare,
         bad_escape,
         unclosed,
+        empty,
     }
 }
 
@@ -245,6 +270,25 @@ pub(crate) fn structure(model: &Model) -> (Vec<Problem>, Structure) {
                         format!(
                             "a string holds `{}`, which is not a STEP escape; it is read as written",
                             String::from_utf8_lossy(shown)
+                        ),
+                    ));
+                }
+                if let Some((n, whole)) = s.empty {
+                    let name = inst
+                        .type_id()
+                        .and_then(|t| schema.attribute(t, n - 1))
+                        .map_or(String::new(), |(a, _)| format!(" ({})", a.name));
+                    out.push((
+                        DiagnosticKind::Syntax,
+                        Some(inst.id),
+                        inst.start,
+                        format!(
+                            "{} (nothing between two separators, as in `,,`): STEP writes `$` for an unset value; that attribute cannot be read, the others can",
+                            if whole {
+                                format!("attribute {n}{name} is empty")
+                            } else {
+                                format!("a list in attribute {n}{name} has an empty item")
+                            }
                         ),
                     ));
                 }

@@ -220,12 +220,24 @@ fn scan_section<'b>(
                 *pos = end + 1;
                 return Ok(());
             }
-            out.problems.push((
-                DiagnosticKind::Syntax,
-                None,
-                p,
-                "expected `#id=` at the start of an instance; skipped to the next `;`".into(),
-            ));
+            out.problems.push(if end == p {
+                (
+                    DiagnosticKind::Syntax,
+                    last_id,
+                    p,
+                    match last_id {
+                        Some(id) => format!("a second `;` (an empty entry) follows {id}; ignored"),
+                        None => "a `;` with nothing before it (an empty entry); ignored".into(),
+                    },
+                )
+            } else {
+                (
+                    DiagnosticKind::Syntax,
+                    None,
+                    p,
+                    "expected `#id=` at the start of an instance; skipped to the next `;`".into(),
+                )
+            });
             *pos = end + 1;
             continue;
         }
@@ -258,6 +270,14 @@ fn scan_section<'b>(
             continue;
         };
         let id = EntityId(id);
+        if id.0 == 0 {
+            out.problems.push((
+                DiagnosticKind::Syntax,
+                Some(id),
+                start,
+                "`#0` is not a valid instance name (STEP numbers instances from #1); the instance is kept".into(),
+            ));
+        }
         i = skip_ws(bytes, i);
         if bytes.get(i) != Some(&b'=') {
             out.problems.push((
