@@ -52,9 +52,6 @@ fn shape(args: &[u8], exists: impl Fn(u64) -> bool, seps: &mut Vec<u32>) -> Shap
     let mut bad_escape = None;
     // The opening quote of a string that never closes.
     let mut unclosed = None;
-    // Whether a value came since the last `(` or `,`, and whether that was a `,`.
-    let mut filled = false;
-    let mut after_comma = false;
     let mut empty = None;
     while i < args.len() {
         let c = args[i];
@@ -74,15 +71,19 @@ fn shape(args: &[u8], exists: impl Fn(u64) -> bool, seps: &mut Vec<u32>) -> Shap
                     bare = Some((i, j));
                 }
                 saw_value = true;
-                filled = true;
                 i = j;
                 continue;
+            }
+            // Only white space since the last `(` or `,`: a `,` here, or a `)` after a `,`,
+            // leaves a value empty (`()` is an empty list).
+            if matches!(c, b',' | b')') && empty.is_none() && (c == b',' || follows_comma(args, i))
+            {
+                empty = Some((commas + 1, depth == 1));
             }
         }
         match c {
             b'\'' => {
                 saw_value = true;
-                filled = true;
                 match crate::string::literal_end(args, i) {
                     Some(q) => {
                         let raw = &args[i + 1..q];
@@ -104,7 +105,6 @@ fn shape(args: &[u8], exists: impl Fn(u64) -> bool, seps: &mut Vec<u32>) -> Shap
             }
             b'"' => {
                 saw_value = true;
-                filled = true;
                 i = memchr::memchr(b'"', &args[i + 1..]).map_or(args.len(), |q| i + q + 2);
                 continue;
             }
@@ -117,18 +117,12 @@ fn shape(args: &[u8], exists: impl Fn(u64) -> bool, seps: &mut Vec<u32>) -> Shap
                 depth += 1;
                 max_depth = max_depth.max(depth);
                 fresh = true;
-                filled = false;
-                after_comma = false;
             }
             b')' => {
                 if depth == 0 {
                     closed_at = None;
                     break;
                 }
-                if !filled && after_comma && empty.is_none() {
-                    empty = Some((commas + 1, depth == 1));
-                }
-                filled = true;
                 depth -= 1;
                 if depth == 0 {
                     seps.push(i as u32);
@@ -137,11 +131,6 @@ fn shape(args: &[u8], exists: impl Fn(u64) -> bool, seps: &mut Vec<u32>) -> Shap
                 }
             }
             b',' => {
-                if !filled && empty.is_none() {
-                    empty = Some((commas + 1, depth == 1));
-                }
-                filled = false;
-                after_comma = true;
                 if depth == 1 {
                     commas += 1;
                     seps.push(i as u32);
@@ -150,7 +139,6 @@ fn shape(args: &[u8], exists: impl Fn(u64) -> bool, seps: &mut Vec<u32>) -> Shap
             }
             b'#' => {
                 saw_value = true;
-                filled = true;
                 let s = i + 1;
                 let mut j = s;
                 while j < args.len() && args[j].is_ascii_digit() {
@@ -179,7 +167,6 @@ fn shape(args: &[u8], exists: impl Fn(u64) -> bool, seps: &mut Vec<u32>) -> Shap
                 if depth >= 1 {
                     saw_value = true;
                 }
-                filled = true;
             }
         }
         i += 1;
@@ -201,6 +188,14 @@ fn shape(args: &[u8], exists: impl Fn(u64) -> bool, seps: &mut Vec<u32>) -> Shap
         unclosed,
         empty,
     }
+}
+
+/// Whether the last byte before `i` that is not white space is a `,`.
+fn follows_comma(args: &[u8], i: usize) -> bool {
+    args[..i]
+        .iter()
+        .rfind(|c| !matches!(c, b' ' | b'\t' | b'\r' | b'\n'))
+        == Some(&b',')
 }
 
 /// The largest `#id` the argument list `args` mentions (0 for none), dangling or not.
@@ -554,6 +549,20 @@ mod tests {
         );
         assert_eq!(s.attrs, 3);
         assert_eq!(seps, [0, 28, 33, 49]);
+    }
+
+    #[test]
+    fn shape_finds_the_first_empty_value_and_only_empty_ones() {
+        let empty = |args: &[u8]| shape(args, |_| true, &mut Vec::new()).empty;
+        assert_eq!(
+            empty(b"(',,',(),( ),IFCLABEL('a,'),/*,,*/$,\",,\",.T.,-1.E-3,#4,*)"),
+            None
+        );
+        assert_eq!(empty(b"($,,$)"), Some((2, true)));
+        assert_eq!(empty(b"(,$)"), Some((1, true)));
+        assert_eq!(empty(b"($ ,\n )"), Some((2, true)));
+        assert_eq!(empty(b"($,(1.,2.),(#1, ,#2),,)"), Some((3, false)));
+        assert_eq!(empty(b"((1.,2.,))"), Some((1, false)));
     }
 
     #[test]
