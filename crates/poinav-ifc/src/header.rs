@@ -107,7 +107,10 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<(Header, Vec<Problem>), HeaderError>
                 )),
                 Err(e) => Some((
                     DiagnosticKind::Syntax,
-                    format!("header entry {name} cannot be read: {e}"),
+                    format!(
+                        "header entry {name} cannot be read: {} at byte {} of its parameters",
+                        e.message, e.offset
+                    ),
                 )),
             };
             if let Some((kind, message)) = problem {

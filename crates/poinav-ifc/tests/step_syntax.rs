@@ -243,7 +243,11 @@ fn header_entries_with_too_few_or_too_many_parameters_are_diagnostics_on_their_l
         .into_bytes(),
     )
     .unwrap();
-    only(&m, DiagnosticKind::Syntax, None, 4);
+    let d = only(&m, DiagnosticKind::Syntax, None, 4);
+    assert_eq!(
+        d.message,
+        "header entry FILE_NAME cannot be read: expected a value at byte 9 of its parameters"
+    );
 }
 
 #[test]
