@@ -132,6 +132,15 @@ impl Model {
             });
             ids = build_id_index(&instances).0;
         }
+        if let Some(p) = ids.get(EntityId(0)) {
+            let inst = &instances[p as usize];
+            diagnostics.push((
+                DiagnosticKind::Syntax,
+                Some(inst.id),
+                inst.start,
+                "`#0` is not a valid instance name (STEP numbers instances from #1); the instance is kept".into(),
+            ));
+        }
         let mut model = Model {
             file,
             bytes,

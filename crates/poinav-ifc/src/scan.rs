@@ -220,24 +220,7 @@ fn scan_section<'b>(
                 *pos = end + 1;
                 return Ok(());
             }
-            out.problems.push(if end == p {
-                (
-                    DiagnosticKind::Syntax,
-                    last_id,
-                    p,
-                    match last_id {
-                        Some(id) => format!("a second `;` (an empty entry) follows {id}; ignored"),
-                        None => "a `;` with nothing before it (an empty entry); ignored".into(),
-                    },
-                )
-            } else {
-                (
-                    DiagnosticKind::Syntax,
-                    None,
-                    p,
-                    "expected `#id=` at the start of an instance; skipped to the next `;`".into(),
-                )
-            });
+            out.problems.push(not_an_instance(p, end, last_id));
             *pos = end + 1;
             continue;
         }
@@ -270,14 +253,6 @@ fn scan_section<'b>(
             continue;
         };
         let id = EntityId(id);
-        if id.0 == 0 {
-            out.problems.push((
-                DiagnosticKind::Syntax,
-                Some(id),
-                start,
-                "`#0` is not a valid instance name (STEP numbers instances from #1); the instance is kept".into(),
-            ));
-        }
         i = skip_ws(bytes, i);
         if bytes.get(i) != Some(&b'=') {
             out.problems.push((
@@ -344,6 +319,25 @@ fn scan_section<'b>(
             )),
         }
     }
+}
+
+/// The problem of an entry at `p` (through the `;` at `end`) that does not start with `#`: an
+/// empty entry (a second `;` after `last`), or text that is no instance.
+#[cold]
+fn not_an_instance(
+    p: usize,
+    end: usize,
+    last: Option<EntityId>,
+) -> (DiagnosticKind, Option<EntityId>, usize, String) {
+    if end != p {
+        let message = "expected `#id=` at the start of an instance; skipped to the next `;`";
+        return (DiagnosticKind::Syntax, None, p, message.into());
+    }
+    let message = match last {
+        Some(id) => format!("a second `;` (an empty entry) follows {id}; ignored"),
+        None => "a `;` with nothing before it (an empty entry); ignored".into(),
+    };
+    (DiagnosticKind::Syntax, last, p, message)
 }
 
 /// For the record starting at `open` in which a string never closes: the last `;` before the
