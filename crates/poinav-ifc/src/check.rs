@@ -1,5 +1,6 @@
 //! Second pass over a scanned model: dangling references, attribute counts, parenthesis
-//! balance (in parallel), bytes that are not UTF-8, and cycles in placements and aggregation.
+//! balance and empty values (in parallel), bytes that are not UTF-8, and cycles in placements
+//! and aggregation.
 
 use rayon::prelude::*;
 use rustc_hash::{FxHashMap, FxHashSet};
@@ -25,6 +26,9 @@ struct Shape {
     bad_escape: Option<(usize, usize)>,
     /// The opening quote of a string that is never closed.
     unclosed: Option<usize>,
+    /// The first empty value (`,,`, `(,` or `,)`): the 1-based attribute it is in, and whether
+    /// it is the attribute itself (not an item of a list inside it).
+    empty: Option<(usize, bool)>,
 }
 
 /// Walks one argument list byte by byte; `exists` tells whether a referenced id is defined.
@@ -48,6 +52,7 @@ fn shape(args: &[u8], exists: impl Fn(u64) -> bool, seps: &mut Vec<u32>) -> Shap
     let mut bad_escape = None;
     // The opening quote of a string that never closes.
     let mut unclosed = None;
+    let mut empty = None;
     while i < args.len() {
         let c = args[i];
         if fresh && !matches!(c, b' ' | b'\t' | b'\r' | b'\n') {
@@ -68,6 +73,12 @@ fn shape(args: &[u8], exists: impl Fn(u64) -> bool, seps: &mut Vec<u32>) -> Shap
                 saw_value = true;
                 i = j;
                 continue;
+            }
+            // Only white space since the last `(` or `,`: a `,` here, or a `)` after a `,`,
+            // leaves a value empty (`()` is an empty list).
+            if matches!(c, b',' | b')') && empty.is_none() && (c == b',' || follows_comma(args, i))
+            {
+                empty = Some((commas + 1, depth == 1));
             }
         }
         match c {
@@ -175,7 +186,16 @@ fn shape(args: &[u8], exists: impl Fn(u64) -> bool, seps: &mut Vec<u32>) -> Shap
         bare,
         bad_escape,
         unclosed,
+        empty,
     }
+}
+
+/// Whether the last byte before `i` that is not white space is a `,`.
+fn follows_comma(args: &[u8], i: usize) -> bool {
+    args[..i]
+        .iter()
+        .rfind(|c| !matches!(c, b' ' | b'\t' | b'\r' | b'\n'))
+        == Some(&b',')
 }
 
 /// The largest `#id` the argument list `args` mentions (0 for none), dangling or not.
@@ -245,6 +265,25 @@ pub(crate) fn structure(model: &Model) -> (Vec<Problem>, Structure) {
                         format!(
                             "a string holds `{}`, which is not a STEP escape; it is read as written",
                             String::from_utf8_lossy(shown)
+                        ),
+                    ));
+                }
+                if let Some((n, whole)) = s.empty {
+                    let name = inst
+                        .type_id()
+                        .and_then(|t| schema.attribute(t, n - 1))
+                        .map_or(String::new(), |(a, _)| format!(" ({})", a.name));
+                    out.push((
+                        DiagnosticKind::Syntax,
+                        Some(inst.id),
+                        inst.start,
+                        format!(
+                            "{} (nothing between two separators, as in `,,`): STEP writes `$` for an unset value; that attribute cannot be read, the others can",
+                            if whole {
+                                format!("attribute {n}{name} is empty")
+                            } else {
+                                format!("a list in attribute {n}{name} has an empty item")
+                            }
                         ),
                     ));
                 }
@@ -510,6 +549,20 @@ mod tests {
         );
         assert_eq!(s.attrs, 3);
         assert_eq!(seps, [0, 28, 33, 49]);
+    }
+
+    #[test]
+    fn shape_finds_the_first_empty_value_and_only_empty_ones() {
+        let empty = |args: &[u8]| shape(args, |_| true, &mut Vec::new()).empty;
+        assert_eq!(
+            empty(b"(',,',(),( ),IFCLABEL('a,'),/*,,*/$,\",,\",.T.,-1.E-3,#4,*)"),
+            None
+        );
+        assert_eq!(empty(b"($,,$)"), Some((2, true)));
+        assert_eq!(empty(b"(,$)"), Some((1, true)));
+        assert_eq!(empty(b"($ ,\n )"), Some((2, true)));
+        assert_eq!(empty(b"($,(1.,2.),(#1, ,#2),,)"), Some((3, false)));
+        assert_eq!(empty(b"((1.,2.,))"), Some((1, false)));
     }
 
     #[test]

@@ -11,11 +11,13 @@ pub enum DiagnosticKind {
     DanglingReference,
     /// Two instances share one `#id`; the first is kept.
     DuplicateId,
-    /// An instance has more or fewer attributes than its schema declares.
+    /// An instance has more or fewer attributes than its schema declares (or a header entry
+    /// more or fewer parameters than ISO 10303-21 declares).
     WrongAttributeCount,
     /// An instance names an entity its schema does not declare.
     UnknownEntity,
-    /// An instance line could not be parsed and was skipped.
+    /// Text breaks the STEP syntax: an entry that could not be parsed and was skipped, an empty
+    /// value (`,,`), a stray `;`, the instance name `#0`.
     Syntax,
     /// Placements refer to each other in a loop.
     CyclicPlacement,

@@ -2,6 +2,8 @@
 
 use std::ops::Range;
 
+use crate::check::Problem;
+use crate::diagnostic::DiagnosticKind;
 use crate::error::ReadErrorKind;
 use crate::scan::{find_record_end, skip_ws_and_comments};
 use crate::value::{parse_args, Value};
@@ -23,7 +25,16 @@ pub struct Header {
 /// A header failure: what and where (byte offset).
 pub(crate) type HeaderError = (ReadErrorKind, usize);
 
-pub(crate) fn parse(bytes: &[u8]) -> Result<Header, HeaderError> {
+/// The header entries ISO 10303-21 declares, with their parameter counts.
+const ENTRIES: [(&[u8], usize); 3] = [
+    (b"FILE_DESCRIPTION", 2),
+    (b"FILE_NAME", 7),
+    (b"FILE_SCHEMA", 1),
+];
+
+/// Reads the header; also returns its readable defects (a header entry whose parameters cannot
+/// be read, or that has more or fewer than ISO 10303-21 declares) as problems at byte offsets.
+pub(crate) fn parse(bytes: &[u8]) -> Result<(Header, Vec<Problem>), HeaderError> {
     let mut pos = 0;
     if bytes.starts_with(b"\xEF\xBB\xBF") {
         pos = 3;
@@ -53,6 +64,7 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Header, HeaderError> {
     pos += 1;
     let mut schema_args = None;
     let mut file_name_args = None;
+    let mut problems = Vec::new();
     loop {
         pos = skip_ws_and_comments(bytes, pos)?;
         if pos >= bytes.len() {
@@ -81,6 +93,30 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Header, HeaderError> {
         }
         let args_start = skip_ws_and_comments(bytes, pos)?;
         let args = args_start..end;
+        if let Some(&(name, want)) = ENTRIES.iter().find(|(k, _)| *k == keyword) {
+            let name = std::str::from_utf8(name).expect("ASCII");
+            let problem = match parse_args(&bytes[trim_end(bytes, args.clone())]) {
+                Ok(values) if values.len() == want => None,
+                Ok(values) => Some((
+                    DiagnosticKind::WrongAttributeCount,
+                    format!(
+                        "header entry {name} has {} parameter{}, ISO 10303-21 declares {want}",
+                        values.len(),
+                        if values.len() == 1 { "" } else { "s" }
+                    ),
+                )),
+                Err(e) => Some((
+                    DiagnosticKind::Syntax,
+                    format!(
+                        "header entry {name} cannot be read: {} at byte {} of its parameters",
+                        e.message, e.offset
+                    ),
+                )),
+            };
+            if let Some((kind, message)) = problem {
+                problems.push((kind, None, kw_start, message));
+            }
+        }
         match keyword {
             b"FILE_SCHEMA" => schema_args = Some(args),
             b"FILE_NAME" => file_name_args = Some(trim_end(bytes, args)),
@@ -116,12 +152,13 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Header, HeaderError> {
             schema_args.start,
         )
     })?;
-    Ok(Header {
+    let header = Header {
         schema_identifier: identifier,
         schema,
         file_name_args,
         end: pos,
-    })
+    };
+    Ok((header, problems))
 }
 
 fn trim_end(bytes: &[u8], r: Range<usize>) -> Range<usize> {
@@ -139,7 +176,8 @@ mod tests {
     #[test]
     fn reads_schema_and_file_name_span() {
         let text = b"ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION(('x;y'),'2;1');\nFILE_NAME('a.ifc','2020-01-01T00:00:00',(''),(''),'','','');\nFILE_SCHEMA (('IFC4X3_ADD2'));\nENDSEC;\nDATA;";
-        let h = parse(text).unwrap();
+        let (h, problems) = parse(text).unwrap();
+        assert!(problems.is_empty(), "{problems:?}");
         assert_eq!(h.schema, Schema::Ifc4x3Add2);
         assert_eq!(h.schema_identifier, "IFC4X3_ADD2");
         assert!(text[h.file_name_args.unwrap()].starts_with(b"('a.ifc'"));

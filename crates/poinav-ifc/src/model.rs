@@ -88,7 +88,7 @@ impl Model {
             id,
             kind,
         };
-        let header = header::parse(&bytes).map_err(|(k, o)| fail(k, o, None))?;
+        let (header, header_problems) = header::parse(&bytes).map_err(|(k, o)| fail(k, o, None))?;
         let schema = header.schema;
         let scanned =
             scan::scan(&bytes, header.end, schema).map_err(|(k, o, id)| fail(k, o, id))?;
@@ -106,6 +106,7 @@ impl Model {
                 ),
             ));
         }
+        diagnostics.extend(header_problems);
         diagnostics.extend(scanned.problems);
         let mut instances = scanned.instances;
         let (mut ids, duplicates) = build_id_index(&instances);
@@ -130,6 +131,15 @@ impl Model {
                 !dropped.contains(&(k - 1))
             });
             ids = build_id_index(&instances).0;
+        }
+        if let Some(p) = ids.get(EntityId(0)) {
+            let inst = &instances[p as usize];
+            diagnostics.push((
+                DiagnosticKind::Syntax,
+                Some(inst.id),
+                inst.start,
+                "`#0` is not a valid instance name (STEP numbers instances from #1); the instance is kept".into(),
+            ));
         }
         let mut model = Model {
             file,

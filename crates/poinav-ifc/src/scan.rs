@@ -220,12 +220,7 @@ fn scan_section<'b>(
                 *pos = end + 1;
                 return Ok(());
             }
-            out.problems.push((
-                DiagnosticKind::Syntax,
-                None,
-                p,
-                "expected `#id=` at the start of an instance; skipped to the next `;`".into(),
-            ));
+            out.problems.push(not_an_instance(p, end, last_id));
             *pos = end + 1;
             continue;
         }
@@ -324,6 +319,25 @@ fn scan_section<'b>(
             )),
         }
     }
+}
+
+/// The problem of an entry at `p` (through the `;` at `end`) that does not start with `#`: an
+/// empty entry (a second `;` after `last`), or text that is no instance.
+#[cold]
+fn not_an_instance(
+    p: usize,
+    end: usize,
+    last: Option<EntityId>,
+) -> (DiagnosticKind, Option<EntityId>, usize, String) {
+    if end != p {
+        let message = "expected `#id=` at the start of an instance; skipped to the next `;`";
+        return (DiagnosticKind::Syntax, None, p, message.into());
+    }
+    let message = match last {
+        Some(id) => format!("a second `;` (an empty entry) follows {id}; ignored"),
+        None => "a `;` with nothing before it (an empty entry); ignored".into(),
+    };
+    (DiagnosticKind::Syntax, last, p, message)
 }
 
 /// For the record starting at `open` in which a string never closes: the last `;` before the

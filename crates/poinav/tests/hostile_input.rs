@@ -427,6 +427,22 @@ fn wrong_attribute_count_is_reported_and_other_attributes_still_read() {
     assert_rest_of_model(&r);
 }
 
+/// The door's Description left empty (`,,`) instead of `$`, and a second `;` after `#14`: the
+/// defects of the step-file-parser fixtures `fail_double_comma` and `fail_double_semi`.
+#[test]
+fn an_empty_attribute_and_a_second_semicolon_are_syntax_diagnostics_and_the_door_reads() {
+    let text = replace_once(template().as_bytes(), "'Door',$,$,#14", b"'Door',,$,#14");
+    let text = replace_once(&text, "(#13,#11);", b"(#13,#11);;");
+    let r = damaged(&text, &[diag("syntax", 6, 13), diag("syntax", 14, 20)]);
+    let message = r["diagnostic_list"][0]["message"].as_str().unwrap();
+    assert!(
+        message.starts_with("attribute 4 (Description) is empty"),
+        "{message}"
+    );
+    assert_door(&r, "Door");
+    assert_rest_of_model(&r);
+}
+
 #[test]
 fn non_utf8_string_is_reported_and_read_as_latin1() {
     let r = damaged(&non_utf8(template().as_bytes()), &[diag("non-utf8", 6, 13)]);
