@@ -121,7 +121,7 @@ fn round(v: f64) -> Value {
 /// place and idle threads steal from it.
 ///
 /// For a crowd the step splits over threads ([`KEEP_BUSY_ROBOTS`] robots or more), the pool's
-/// other threads are kept awake looking for work while `work` runs ([`keep_busy`]) instead of
+/// other threads are kept awake looking for work while `work` runs (polling rayon) instead of
 /// falling asleep between the step's calls: waking a sleeping thread costs a system call and a
 /// context switch each time, about a fifth of the samples of 100 robots on two threads
 /// (`perf`: the scheduler and rayon's idle loop). Smaller crowds run on one thread anyway.
