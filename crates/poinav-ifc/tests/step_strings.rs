@@ -3,7 +3,6 @@
 //! the end of a string, `\X2\` without `\X0\` and a string that never closes.
 
 use std::path::Path;
-use std::process::Command;
 
 use poinav_ifc::{DiagnosticKind, EntityId, Model};
 
@@ -28,17 +27,12 @@ fn ifcopenshell(path: &Path) -> Option<Vec<String>> {
                   try:\n    m = ifcopenshell.open(sys.argv[1])\n\
                   except Exception:\n    print('null'); sys.exit(0)\n\
                   print(json.dumps([m.header.file_name.name, m.by_id(1).Name, m.by_id(2).Name]))";
-    let out = Command::new(py)
-        .args(["-c", script])
-        .arg(path)
-        .output()
-        .expect("python runs");
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    serde_json::from_slice(&out.stdout).expect("JSON")
+    serde_json::from_value(poinav_testkit::python_json(
+        &py,
+        script,
+        &[path.as_os_str()],
+    ))
+    .expect("a list of names, or null")
 }
 
 /// poinav's reading, in the same form, and the model's diagnostics.

@@ -3,8 +3,6 @@
 //! names each defect's kind, line and `#id`, and IfcOpenShell's `simple_spf` (that validator,
 //! run live) rejects the same texts and reads the clean ones.
 
-use std::process::Command;
-
 use poinav_ifc::{Diagnostic, DiagnosticKind, EntityId, Model, ReadErrorKind};
 
 const DESCRIPTION: &str = "FILE_DESCRIPTION(('ViewDefinition [x]'),'2;1');";
@@ -307,17 +305,7 @@ fn ifcopenshell_simple_spf_rejects_each_defect_and_reads_the_clean_texts() {
                   \x20       ok = False\n\
                   \x20   out[os.path.basename(f)[:-4]] = ok\n\
                   print(json.dumps(out))";
-    let out = Command::new(py)
-        .args(["-c", script])
-        .arg(dir.path())
-        .output()
-        .expect("python runs");
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let verdicts: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");
+    let verdicts = poinav_testkit::python_json(&py, script, &[dir.path().as_os_str()]);
     for (name, text, clean) in &all {
         assert_eq!(
             verdicts[name].as_bool(),

@@ -82,6 +82,16 @@ pub fn ifcos_with(python: &Path, script: &str, args: &[&OsStr]) -> serde_json::V
     json_of_output(out, script)
 }
 
+/// Runs the Python code `code` (`python -c code ARGS`) and parses its JSON output.
+pub fn python_json(python: &Path, code: &str, args: &[&OsStr]) -> serde_json::Value {
+    let out = Command::new(python)
+        .args(["-c", code])
+        .args(args)
+        .output()
+        .expect("python runs");
+    json_of_output(out, "the Python code")
+}
+
 /// Starts `tests/ifcos/SCRIPT FILE` with `python`; finish with [`json_of`].
 pub fn spawn_ifcos(python: &Path, script: &str, file: &Path) -> Child {
     Command::new(python)
