@@ -1,6 +1,6 @@
-//! Unit tests of the controllers: route following reaches its waypoints (alone and in a run
-//! through a door), key replay and live keys, the wall-following PD law and wall following in
-//! a run.
+//! Unit tests of the controllers: route following reaches its waypoints (alone, in a run
+//! through a door, and between two doors in one wall), key replay and live keys, the
+//! wall-following PD law and wall following in a run.
 
 use super::*;
 use crate::events::EventKind;
@@ -88,6 +88,42 @@ fn a_route_through_a_door_arrives_in_the_target_zone() {
         .events
         .iter()
         .any(|e| matches!(e.kind, EventKind::Contact { .. })));
+}
+
+/// Room 3 to Room 1 of the test building: both doors are in the corridor's south wall (y =
+/// 4.0-4.2). Judged from Room 3's door centre, Room 1's door lay on neither side, its approach
+/// point was put inside Room 1 (y = 3.2), and the robot drove at it along the corridor into the
+/// wall: stopped by A-1 at (6.15, 4.44) for ever (the door crowd's R11, Room 4 to Room 1).
+#[test]
+fn a_route_between_doors_in_one_wall_approaches_the_second_from_the_corridor() {
+    let floor = crate::test_floor::doors_floor();
+    let nav = Plan::new(&floor);
+    let s = setup(
+        "R",
+        DVec2::new(10.4, 1.0),
+        90.0,
+        ControllerSpec::Route {
+            to: "Room 1".into(),
+            speed_m_s: None,
+        },
+    );
+    let to = nav.zone_at(&floor, DVec2::new(2.0, 2.0)).unwrap();
+    let doors = nav
+        .door_path(&floor, s.start, to, &s.profile)
+        .expect("a way");
+    let lead = 0.9;
+    let (wps, _) = nav.waypoints(s.start, &doors, to, lead);
+    let y: Vec<f64> = wps.iter().map(|p| (p.y * 1e9).round() / 1e9).collect();
+    // Out of Room 3 (4.1 -+ 0.9), along the corridor, into Room 1 (4.1 +- 0.9), its goal.
+    assert_eq!(&y[..6], [3.2, 4.1, 5.0, 5.0, 4.1, 3.2]);
+    assert_eq!((wps[3].x, wps[4].x), (2.0, 2.0));
+    let mut sim = Sim::new(&floor, &[s], SimOptions::default()).unwrap();
+    while sim.mode(0) != Some(Mode::Arrived) {
+        sim.tick(true);
+        // 5.72 s at the default cruise speed.
+        assert!(sim.steps() < 420, "not there after 7 s");
+    }
+    assert!(sim.robots()[0].state.pos.y < 4.0);
 }
 
 #[test]

@@ -105,7 +105,9 @@ impl Plan {
         let mut prev = from;
         for &d in doors {
             let door = &self.doors[d.get()];
-            match door.axis {
+            // The next door's side is judged from where this one leads out: from its centre,
+            // a door in the same wall lies on neither side.
+            prev = match door.axis {
                 Some(axis) => {
                     let n = if (door.center - prev).dot(axis) >= 0.0 {
                         axis
@@ -114,13 +116,14 @@ impl Plan {
                     };
                     out.extend([door.center - n * lead, door.center, door.center + n * lead]);
                     widths.extend([None, Some(door.width), Some(door.width)]);
+                    door.center + n * lead
                 }
                 None => {
                     out.push(door.center);
                     widths.push(Some(door.width));
+                    door.center
                 }
-            }
-            prev = door.center;
+            };
         }
         out.push(self.goals[to.get()]);
         widths.push(None);
