@@ -4,7 +4,8 @@
 
 use glam::DVec2;
 use poinav_roles::{
-    clear_width_status, slope_status, stairs_status, AccessibilityStatus, RobotProfile,
+    clear_width_status, clear_width_verdict, slope_status, stairs_status, AccessibilityStatus,
+    RobotProfile,
 };
 use serde::{Deserialize, Serialize};
 
@@ -212,8 +213,17 @@ pub fn worse(a: AccessibilityStatus, b: AccessibilityStatus) -> AccessibilitySta
 /// least MinClearanceWidth FULL_ACCESS, at least the robot's width RESTRICTED, else BLOCKED; a
 /// width that is not a positive number is unknown (PENDING_VALIDATION).
 pub fn width_status(clear_width_m: f64, profile: &RobotProfile) -> (AccessibilityStatus, String) {
-    let known = (clear_width_m.is_finite() && clear_width_m > 0.0).then_some(clear_width_m);
-    clear_width_status(known, None, profile)
+    clear_width_status(known_width(clear_width_m), None, profile)
+}
+
+/// [`width_status`] without the reason.
+pub fn width_verdict(clear_width_m: f64, profile: &RobotProfile) -> AccessibilityStatus {
+    clear_width_verdict(known_width(clear_width_m), profile)
+}
+
+/// A width that is a positive number, else unknown.
+fn known_width(clear_width_m: f64) -> Option<f64> {
+    (clear_width_m.is_finite() && clear_width_m > 0.0).then_some(clear_width_m)
 }
 
 /// True when a robot may pass a transition with this status (`pending_passable` decides

@@ -1,11 +1,12 @@
 //! A door's AccessibilityStatus for any robot profile, computed from its profile-free facts
 //! (the width the classification read, the rule that blocks it, its geometric clear width) by
-//! one function, [`door_status`], for the profile a floor was built for and any other alike.
+//! one function, [`door_status`], for the profile a floor was built for and any other alike
+//! ([`door_verdict`]: the same status without the reason, for route searches).
 
-use poinav_roles::{clear_width_status, AccessibilityStatus, RobotProfile};
+use poinav_roles::{clear_width_status, clear_width_verdict, AccessibilityStatus, RobotProfile};
 use serde::{Deserialize, Serialize};
 
-use crate::building::{width_status, worse};
+use crate::building::{width_status, width_verdict, worse};
 use crate::floor::FloorDoor;
 
 /// A rule that blocks a door for every profile, and why (in IFC: a window, a locked door, a
@@ -40,14 +41,28 @@ pub fn classified_status(
 /// PENDING_VALIDATION for every profile its geometric width does not block.
 pub fn door_status(door: &FloorDoor, profile: &RobotProfile) -> (AccessibilityStatus, String) {
     let (by_width, reason) = width_status(door.clear_width_m, profile);
-    let (classified, _) = classified_status(door, profile);
-    if worse(classified, by_width) != by_width {
+    let status = door_verdict(door, profile);
+    if status != by_width {
         return (
-            classified,
-            format!("{} as classified ({reason})", classified.label()),
+            status,
+            format!("{} as classified ({reason})", status.label()),
         );
     }
     (by_width, reason)
+}
+
+/// [`door_status`] without the reason: what a route search asks of every door it crosses.
+pub fn door_verdict(door: &FloorDoor, profile: &RobotProfile) -> AccessibilityStatus {
+    let by_width = width_verdict(door.clear_width_m, profile);
+    let classified = match &door.blocked {
+        Some(_) => AccessibilityStatus::Blocked,
+        None => clear_width_verdict(door.classified_width_m, profile),
+    };
+    if worse(classified, by_width) != by_width {
+        classified
+    } else {
+        by_width
+    }
 }
 
 #[cfg(test)]
@@ -261,6 +276,7 @@ mod tests {
                             None => clear_width_status(classified, None, &profile).0,
                         };
                         assert_eq!(classified_status(&d, &profile).0, stored);
+                        assert_eq!(door_verdict(&d, &profile), door_status(&d, &profile).0);
                         assert_eq!(
                             door_status(&d, &profile),
                             stored_rule(&d, stored, profile.min_clearance_width(), &profile),

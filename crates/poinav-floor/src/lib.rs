@@ -28,7 +28,7 @@ pub use poinav_plane as polygon;
 pub use poinav_plane::Ring;
 
 pub use building::{Building, ConnectionKind, Landing, VerticalConnection};
-pub use door_status::{classified_status, door_status, Block};
+pub use door_status::{classified_status, door_status, door_verdict, Block};
 pub use floor::{Floor, FloorDoor, FloorObstacle, FloorZone, ObstacleKind};
 pub use id::ElementId;
 pub use index::{DoorIdx, ObstacleIdx, ZoneIdx};

@@ -19,7 +19,7 @@ use serde::Serialize;
 use crate::bounds::{self, GaveUp, Stage, StageBounds};
 use crate::building::passable;
 use crate::door_frame::DoorFrame;
-use crate::door_status::door_status;
+use crate::door_status::{door_status, door_verdict};
 use crate::floor::{Floor, ObstacleKind};
 use crate::polygon::{self, PassageFrame};
 use crate::thin_cells::{lines_doors, ThinCells};
@@ -275,7 +275,7 @@ pub fn entrance_aprons(
             continue;
         }
         if options.doors_by_status
-            && !passable(door_status(d, profile).0, options.pending_doors_open)
+            && !passable(door_verdict(d, profile), options.pending_doors_open)
         {
             continue;
         }

@@ -25,7 +25,9 @@ pub use coordination::Coordination;
 pub use error::{ProfileError, UnknownLabel};
 pub use profile::{Locomotion, RobotProfile};
 pub use record::PoiRecord;
-pub use status::{clear_width_status, slope_status, stairs_status, Accessibility};
+pub use status::{
+    clear_width_status, clear_width_verdict, slope_status, stairs_status, Accessibility,
+};
 pub use taxonomy::{
     AccessibilityStatus, AppliesTo, Category, CoordinationProtocol, PoiType, Role, ValidationMethod,
 };

@@ -34,31 +34,42 @@ pub fn clear_width_status(
     profile: &RobotProfile,
 ) -> (AccessibilityStatus, String) {
     use AccessibilityStatus::*;
+    let status = clear_width_verdict(clear_width_m, profile);
+    let Some(w) = clear_width_m else {
+        return (status, "clear width unknown".into());
+    };
     let need = profile.min_clearance_width();
     let from = source.map(|s| format!(" ({s})")).unwrap_or_default();
+    let reason = match status {
+        FullAccess => format!("clear width {}{from} >= required {}", fmt_m(w), fmt_m(need)),
+        Restricted => format!(
+            "clear width {}{from} < required {}, >= robot width {}",
+            fmt_m(w),
+            fmt_m(need),
+            fmt_m(profile.width_m)
+        ),
+        _ => format!(
+            "clear width {}{from} < robot width {}",
+            fmt_m(w),
+            fmt_m(profile.width_m)
+        ),
+    };
+    (status, reason)
+}
+
+/// [`clear_width_status`] without the reason: for searches that only ask whether a robot
+/// passes (a route's door edges), where writing the reason's numbers cost far more than the
+/// rule.
+pub fn clear_width_verdict(
+    clear_width_m: Option<f64>,
+    profile: &RobotProfile,
+) -> AccessibilityStatus {
+    use AccessibilityStatus::*;
     match clear_width_m {
-        Some(w) if w >= need => (
-            FullAccess,
-            format!("clear width {}{from} >= required {}", fmt_m(w), fmt_m(need)),
-        ),
-        Some(w) if w >= profile.width_m => (
-            Restricted,
-            format!(
-                "clear width {}{from} < required {}, >= robot width {}",
-                fmt_m(w),
-                fmt_m(need),
-                fmt_m(profile.width_m)
-            ),
-        ),
-        Some(w) => (
-            Blocked,
-            format!(
-                "clear width {}{from} < robot width {}",
-                fmt_m(w),
-                fmt_m(profile.width_m)
-            ),
-        ),
-        None => (PendingValidation, "clear width unknown".into()),
+        Some(w) if w >= profile.min_clearance_width() => FullAccess,
+        Some(w) if w >= profile.width_m => Restricted,
+        Some(_) => Blocked,
+        None => PendingValidation,
     }
 }
 
@@ -99,5 +110,59 @@ pub fn slope_status(
             AccessibilityStatus::PendingValidation,
             "slope unknown".into(),
         ),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use AccessibilityStatus::*;
+
+    #[test]
+    fn the_clear_width_verdict_is_the_status_without_its_reason() {
+        let paper = RobotProfile::paper();
+        let need = paper.min_clearance_width();
+        // Around both thresholds, exactly on them, unknown, not a number.
+        let widths = [
+            None,
+            Some(f64::NAN),
+            Some(-1.0),
+            Some(0.0),
+            Some(paper.width_m - 1e-9),
+            Some(paper.width_m),
+            Some(0.5 * (paper.width_m + need)),
+            Some(need - 1e-9),
+            Some(need),
+            Some(need + 1e-9),
+            Some(2.0),
+        ];
+        let verdicts: Vec<_> = widths
+            .iter()
+            .map(|&w| {
+                let v = clear_width_verdict(w, &paper);
+                assert_eq!(v, clear_width_status(w, Some("lining"), &paper).0, "{w:?}");
+                v
+            })
+            .collect();
+        assert_eq!(
+            verdicts,
+            [
+                PendingValidation,
+                Blocked,
+                Blocked,
+                Blocked,
+                Blocked,
+                Restricted,
+                Restricted,
+                Restricted,
+                FullAccess,
+                FullAccess,
+                FullAccess
+            ]
+        );
+        assert_eq!(
+            clear_width_status(Some(0.8), None, &paper).1,
+            "clear width 0.800 m < required 0.900 m, >= robot width 0.700 m"
+        );
     }
 }

@@ -4,7 +4,7 @@
 
 use glam::DVec2;
 use poinav_nav::building::passable;
-use poinav_nav::door_status::door_status;
+use poinav_nav::door_status::door_verdict;
 use poinav_nav::graph::zone_near;
 use poinav_nav::zone_index::ZoneIndex;
 use poinav_nav::{Building, DoorFrame, DoorIdx, Floor, Topology, ZoneIdx};
@@ -75,7 +75,7 @@ impl Plan {
 
     /// Doors on the shortest way from `from` to zone `to`, in order
     /// ([`Topology::door_path`]), through doors passable for `profile` by poinav-nav's status
-    /// rule ([`door_status`]; PENDING_VALIDATION passable) and at least its width wide.
+    /// rule ([`door_verdict`]; PENDING_VALIDATION passable) and at least its width wide.
     pub fn door_path(
         &self,
         floor: &Floor,
@@ -86,7 +86,7 @@ impl Plan {
         let start = self.zone_at(floor, from)?;
         self.topology.door_path(0, start, to, |k| {
             let d = &floor.doors[k.get()];
-            passable(door_status(d, profile).0, true) && d.clear_width_m >= profile.width_m
+            passable(door_verdict(d, profile), true) && d.clear_width_m >= profile.width_m
         })
     }
 
