@@ -500,15 +500,18 @@ fn door_wait_with(
     let dir = env.world.robot(me).ax;
     let cone = 50f64.to_radians().cos();
     let mut nearest: Option<(DoorIdx, f64, u32)> = None;
-    for (d, door) in env.floor.doors.iter().enumerate() {
+    // The doors whose centres lie within reach (the grid of door centres offers them in no
+    // particular order: the nearest wins, on a tie the lowest index, as in floor order).
+    env.nav.doors_near(pos, DOOR_CONFLICT_M + 1e-6, |d| {
+        let door = &env.floor.doors[d];
         let Some(axis) = env.nav.doors[d].axis else {
-            continue;
+            return;
         };
         let to = door.center - pos;
         let mine = to.length();
         let in_cone = to.dot(dir) >= cone * mine || held == Some(DoorIdx::new(d));
         if !(1e-9..=DOOR_CONFLICT_M).contains(&mine) || !in_cone {
-            continue;
+            return;
         }
         let my_side = -to.dot(axis);
         // About to enter a shared (C-1) zone from outside it through this door, not yet
@@ -546,11 +549,11 @@ fn door_wait_with(
             }
         });
         if let Some(w) = who {
-            if nearest.is_none_or(|n| mine < n.1) {
+            if nearest.is_none_or(|n| mine < n.1 || (mine == n.1 && d < n.0.get())) {
                 nearest = Some((DoorIdx::new(d), mine, w));
             }
         }
-    }
+    });
     nearest
 }
 

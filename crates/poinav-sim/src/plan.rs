@@ -10,6 +10,8 @@ use poinav_nav::zone_index::ZoneIndex;
 use poinav_nav::{Building, DoorFrame, DoorIdx, Floor, Topology, ZoneIdx};
 use poinav_roles::RobotProfile;
 
+use crate::neighbours::PointGrid;
+
 /// A door as the robots steer through it.
 #[derive(Debug, Clone, PartialEq)]
 pub struct DoorWay {
@@ -31,7 +33,14 @@ pub struct Plan {
     pub goals: Vec<DVec2>,
     topology: Topology,
     zones: ZoneIndex,
+    /// The doors' centres in cells of [`DOOR_CELL_M`]: the doors near a robot without a test
+    /// of every door of the floor per robot and step ([`Plan::doors_near`]).
+    centres: PointGrid,
 }
+
+/// The cell size of [`Plan`]'s grid of door centres, metres: the radius Algorithm 1 looks for
+/// doors in (`DOOR_CONFLICT_M`), so a query visits two or three cells a side.
+const DOOR_CELL_M: f64 = 3.0;
 
 impl Plan {
     /// The plan of `floor`.
@@ -60,12 +69,24 @@ impl Plan {
                 width: d.clear_width_m,
             })
             .collect();
+        let mut centres = PointGrid::default();
+        centres.rebuild(
+            &floor.doors.iter().map(|d| d.center).collect::<Vec<_>>(),
+            DOOR_CELL_M,
+        );
         Plan {
             doors,
             goals,
             topology,
             zones,
+            centres,
         }
+    }
+
+    /// Calls `f` with every door whose centre lies within `r` of `p` (and some farther ones:
+    /// callers test the distance), each once, in no particular order.
+    pub fn doors_near(&self, p: DVec2, r: f64, f: impl FnMut(usize)) {
+        self.centres.near(p, r, f);
     }
 
     /// The zone holding `p`, else the nearest within 0.5 m ([`zone_near`]).
