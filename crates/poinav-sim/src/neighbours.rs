@@ -62,11 +62,15 @@ impl PointGrid {
     pub fn near(&self, p: DVec2, r: f64, mut f: impl FnMut(usize)) {
         let (x0, y0) = self.key(p - DVec2::splat(r));
         let (x1, y1) = self.key(p + DVec2::splat(r));
-        for y in y0..=y1 {
-            for x in x0..=x1 {
-                for &(_, _, b) in self.bucket(x, y) {
-                    f(b as usize);
+        // The keys sort by column first: a column's cells y0..=y1 follow each other, found by
+        // one search per column (not two per cell).
+        for x in x0..=x1 {
+            let a = self.keys.partition_point(|k| (k.0, k.1) < (x, y0));
+            for &(kx, ky, b) in &self.keys[a..] {
+                if kx != x || ky > y1 {
+                    break;
                 }
+                f(b as usize);
             }
         }
     }
@@ -77,7 +81,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn pairs_within_the_cell_size_are_all_found_once() {
+    fn pairs_and_points_near_are_all_found_once() {
         let mut seed = 0x2545_F491_4F6C_DD1Du64;
         let mut rnd = || {
             seed ^= seed << 13;
@@ -107,16 +111,26 @@ mod tests {
         found.sort_unstable();
         assert_eq!(found, brute);
         assert!(brute.len() > 100, "{}", brute.len());
-        let mut near = Vec::new();
-        g.near(pts[7], 3.0, |b| {
-            if pts[b].distance(pts[7]) <= 3.0 {
-                near.push(b)
+        // Queries at points of the set, between them, and beyond the set's edge.
+        let mut queries: Vec<DVec2> = pts[..40].to_vec();
+        queries.extend([DVec2::new(-21.0, 0.0), DVec2::new(22.5, 16.0), DVec2::ZERO]);
+        let mut found = 0;
+        for q in queries {
+            for r in [0.7, 3.0] {
+                let mut near = Vec::new();
+                g.near(q, r, |b| {
+                    if pts[b].distance(q) <= r {
+                        near.push(b)
+                    }
+                });
+                near.sort_unstable();
+                let want: Vec<usize> = (0..pts.len())
+                    .filter(|&b| pts[b].distance(q) <= r)
+                    .collect();
+                assert_eq!(near, want, "{q} {r}");
+                found += near.len();
             }
-        });
-        near.sort_unstable();
-        let want: Vec<usize> = (0..pts.len())
-            .filter(|&b| pts[b].distance(pts[7]) <= 3.0)
-            .collect();
-        assert_eq!(near, want);
+        }
+        assert!(found > 400, "{found}");
     }
 }
