@@ -522,7 +522,7 @@ fn door_wait_with(
         let mut who: Option<u32> = None;
         others(door.center, &mut |r32| {
             let r = r32 as usize;
-            if r == me || who.is_some_and(|w| w <= r32) || !waits_for(env, me, r) {
+            if r == me || who.is_some_and(|w| w <= r32) {
                 return;
             }
             let o = &env.robots[r];
@@ -544,7 +544,8 @@ fn door_wait_with(
             // Entering the shared zone, give way to the robots already in it near the door
             // (those coming through it: as above).
             let merge = merging && !coming && theirs <= MERGE_M && rel.dot(axis) * my_side < 0.0;
-            if (other_side && coming && they_go) || clearing || merge {
+            // Whether `me` may wait for it at all last (the wait-for chain: the costly part).
+            if ((other_side && coming && they_go) || clearing || merge) && waits_for(env, me, r) {
                 who = Some(r32);
             }
         });
