@@ -85,20 +85,25 @@ pub fn push_digits<T: Text>(out: &mut T, v: u64, width: usize) {
 fn put_back(buf: &mut [u8], end: usize, mut v: u64) -> usize {
     let mut i = end;
     while v >= 100 {
-        let k = (v % 100) as usize * 2;
-        v /= 100;
         i -= 2;
-        buf[i..i + 2].copy_from_slice(&PAIRS[k..k + 2]);
+        put_pair(buf, i, v % 100);
+        v /= 100;
     }
     if v >= 10 {
-        let k = v as usize * 2;
         i -= 2;
-        buf[i..i + 2].copy_from_slice(&PAIRS[k..k + 2]);
+        put_pair(buf, i, v);
     } else {
         i -= 1;
         buf[i] = b'0' + v as u8;
     }
     i
+}
+
+/// Writes the two digits of `v` (below 100) at `buf[i..i + 2]`.
+#[inline]
+fn put_pair(buf: &mut [u8], i: usize, v: u64) {
+    let k = v as usize * 2;
+    buf[i..i + 2].copy_from_slice(&PAIRS[k..k + 2]);
 }
 
 /// Appends `m / 10^decimals` (`m` > 0 and at most 10^16, `decimals` at most 6) with the
@@ -113,10 +118,9 @@ fn push_scaled<T: Text>(out: &mut T, mut m: u64, decimals: usize) {
     let mut i = 24;
     let mut left = decimals;
     while left >= 2 {
-        let k = (m % 100) as usize * 2;
-        m /= 100;
         i -= 2;
-        back[i..i + 2].copy_from_slice(&PAIRS[k..k + 2]);
+        put_pair(&mut back, i, m % 100);
+        m /= 100;
         left -= 2;
     }
     if left == 1 {
