@@ -10,6 +10,7 @@ use poinav_nav::zone_index::ZoneIndex;
 use poinav_nav::{Building, DoorFrame, DoorIdx, Floor, Topology, ZoneIdx};
 use poinav_roles::RobotProfile;
 
+use crate::algorithm1::DOOR_CONFLICT_M;
 use crate::neighbours::PointGrid;
 
 /// A door as the robots steer through it.
@@ -33,14 +34,11 @@ pub struct Plan {
     pub goals: Vec<DVec2>,
     topology: Topology,
     zones: ZoneIndex,
-    /// The doors' centres in cells of [`DOOR_CELL_M`]: the doors near a robot without a test
-    /// of every door of the floor per robot and step ([`Plan::doors_near`]).
+    /// The doors' centres in cells as wide as the radius Algorithm 1 looks for doors in
+    /// ([`DOOR_CONFLICT_M`]: a query visits two or three cells a side): the doors near a robot
+    /// without a test of every door of the floor per robot and step ([`Plan::doors_near`]).
     centres: PointGrid,
 }
-
-/// The cell size of [`Plan`]'s grid of door centres, metres: the radius Algorithm 1 looks for
-/// doors in (`DOOR_CONFLICT_M`), so a query visits two or three cells a side.
-const DOOR_CELL_M: f64 = 3.0;
 
 impl Plan {
     /// The plan of `floor`.
@@ -72,7 +70,7 @@ impl Plan {
         let mut centres = PointGrid::default();
         centres.rebuild(
             &floor.doors.iter().map(|d| d.center).collect::<Vec<_>>(),
-            DOOR_CELL_M,
+            DOOR_CONFLICT_M,
         );
         Plan {
             doors,

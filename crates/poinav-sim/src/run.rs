@@ -141,9 +141,9 @@ pub fn on_pool<R: Send>(robots: usize, work: impl FnOnce() -> R + Send) -> R {
     })
 }
 
-/// The smallest crowd [`on_pool`] keeps the pool's threads awake for: the step's parallel
-/// passes hand out at least 8 robots per task, so smaller crowds run on one thread.
-pub const KEEP_BUSY_ROBOTS: usize = 16;
+/// The smallest crowd [`on_pool`] keeps the pool's threads awake for: two of the step's
+/// tasks (`MIN_ROBOTS_PER_TASK` robots each); smaller crowds run on one thread.
+pub const KEEP_BUSY_ROBOTS: usize = 2 * crate::step::MIN_ROBOTS_PER_TASK;
 
 /// Sets its flag when dropped.
 struct SetOnDrop<'a>(&'a AtomicBool);

@@ -431,6 +431,10 @@ fn standing(
     })
 }
 
+/// The fewest robots one task of the step's parallel passes takes (fewer are not worth a
+/// hand-over to another thread).
+pub(crate) const MIN_ROBOTS_PER_TASK: usize = 8;
+
 /// A record's placeholder before a step writes it.
 fn blank_record() -> StepRecord {
     StepRecord {
@@ -837,7 +841,7 @@ impl<'f> Sim<'f> {
             .zip(self.perceptions.par_iter_mut())
             .zip(perceived.par_iter_mut())
             .enumerate()
-            .with_min_len(8)
+            .with_min_len(MIN_ROBOTS_PER_TASK)
             .for_each(|(i, ((((mind, reading), (key, dirs)), p), out))| {
                 let r = &robots[i];
                 let h = r.state.heading;
@@ -920,7 +924,7 @@ impl<'f> Sim<'f> {
             .zip(self.guesses.par_iter_mut())
             .zip(self.nears.par_iter_mut())
             .enumerate()
-            .with_min_len(8)
+            .with_min_len(MIN_ROBOTS_PER_TASK)
             .for_each_init(
                 Scratch::default,
                 |sc,
@@ -1019,7 +1023,7 @@ impl<'f> Sim<'f> {
         let this = &*self;
         let (mut guesses, nears): (Vec<Move>, Vec<Near>) = (0..actions.len())
             .into_par_iter()
-            .with_min_len(8)
+            .with_min_len(MIN_ROBOTS_PER_TASK)
             .map_init(Scratch::default, |sc, i| {
                 let m = this.plan_move(i, actions[i], sc);
                 (m, Near::of(&sc.robots))
